@@ -1,0 +1,63 @@
+#include <chrono>
+#include <cstdio>
+
+#include "engine/app/commands.h"
+#include "engine/render/image_io.h"
+#include "engine/render/renderer.h"
+#include "engine/scene/scene.h"
+
+namespace forest::app {
+
+int run_render(const RenderArgs& args) {
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  std::filesystem::path out = args.out;
+  check_output_path(out, "--out");
+  SceneDesc desc = load_scene_file(args.scene);
+  if (args.width) desc.width = *args.width;
+  if (args.height) desc.height = *args.height;
+  Scene scene = build_scene(desc);
+  if (scene.placement_shortfall > 0)
+    std::fprintf(stderr, "forest: %s: placement: only %u of %u trees found room (min_spacing / radius / max_slope)\n",
+                 args.scene.c_str(), desc.placement.count - scene.placement_shortfall, desc.placement.count);
+  auto t_scene = clock::now();
+
+  vk::Context ctx;
+  vk::ContextOptions options;
+  options.device = args.device;
+  options.validation = args.validate || vk::validation_from_env();
+  int code = 0;
+  try {
+    vk::create_context(ctx, options);
+    FrameImage image;
+    FrameStats stats;
+    auto t_render = clock::now();
+    {
+      Renderer renderer(ctx, scene, desc.width, desc.height);
+      t_render = clock::now();
+      stats = renderer.render(desc.camera, &image);
+    }
+    auto t_done = clock::now();
+    if (ctx.validation_messages > 0) {
+      std::fprintf(stderr, "forest: %u Vulkan validation message(s); no image written\n", ctx.validation_messages.load());
+      code = 1;
+    } else {
+      write_image(image, out);
+      auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+      std::printf("wrote %s (%ux%u) on %s: %u trees, %u visible, %u leaves drawn\n", out.c_str(), desc.width,
+                  desc.height, ctx.properties.deviceName, stats.instances, stats.branch_draws, stats.leaves_drawn);
+      if (args.stats)
+        std::printf("time: scene %.0f ms (generate + place), upload %.0f ms, frame %.1f ms wall; "
+                    "GPU cull %.2f ms, draw %.1f ms, frame %.1f ms\n",
+                    ms(t0, t_scene), ms(t_scene, t_render), ms(t_render, t_done), stats.cull_ms, stats.draw_ms,
+                    stats.frame_ms);
+    }
+  } catch (...) {
+    vk::destroy_context(ctx);
+    throw;
+  }
+  vk::destroy_context(ctx);
+  return code;
+}
+
+}  // namespace forest::app

@@ -1,0 +1,33 @@
+// The `forest` subcommands. Each returns the process exit code:
+// 0 success, 2 bad input or usage, 1 internal failure (thrown, mapped in main).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace forest::app {
+
+struct InfoArgs {
+  std::string device;
+};
+int run_info(const InfoArgs& args);
+
+struct GenerateArgs {
+  std::string species;
+  std::string method;
+  std::optional<uint64_t> seed;
+  std::string out;
+};
+int run_generate(const GenerateArgs& args);
+
+struct RenderArgs {
+  std::string scene;
+  std::string out;
+  std::string device;
+  std::optional<uint32_t> width, height;
+  bool stats = false;
+  bool validate = false;
+};
+int run_render(const RenderArgs& args);
+
+}  // namespace forest::app

@@ -1,0 +1,81 @@
+// forest: offline tree generators and the real-time forest renderer, one executable.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/app/commands.h"
+#include "engine/vk/context.h"
+#include "generators/common/input_error.h"
+
+using namespace forest;
+
+int main(int argc, char** argv) {
+  CLI::App cli{"forest: tree generators and a GPU-pruned forest renderer (Vulkan 1.3)"};
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", "forest 0.1.0");
+
+  app::InfoArgs info;
+  auto* info_cmd = cli.add_subcommand("info", "List Vulkan devices, pick one and check the features the engine relies on");
+  info_cmd->add_option("--device", info.device, "Device index or name substring (default: $FOREST_DEVICE, then discrete GPU first)");
+
+  app::GenerateArgs gen;
+  uint64_t gen_seed = 0;
+  auto* gen_cmd = cli.add_subcommand("generate", "Generate a tree model from a species preset and write a .glb asset");
+  gen_cmd->add_option("--species", gen.species, "Species preset (TOML)")->check(CLI::ExistingFile);
+  gen_cmd->add_option("--method", gen.method, "Modeling method id (uses its built-in preset without --species)");
+  auto* seed_opt = gen_cmd->add_option("--seed", gen_seed, "Random seed (overrides the preset's)");
+  gen_cmd->add_option("--out", gen.out, "Output .glb")->required();
+
+  app::RenderArgs render;
+  uint32_t width = 0, height = 0;
+  auto* render_cmd = cli.add_subcommand("render", "Render a scene headless to an image");
+  render_cmd->add_option("scene", render.scene, "Scene file (TOML)")->required();
+  render_cmd->add_option("--out", render.out, "Output image (.png)")->required();
+  render_cmd->add_option("--device", render.device, "Device index or name substring");
+  auto* width_opt = render_cmd->add_option("--width", width, "Override [render].width")->check(CLI::Range(16, 8192));
+  auto* height_opt = render_cmd->add_option("--height", height, "Override [render].height")->check(CLI::Range(16, 8192));
+  render_cmd->add_flag("--stats", render.stats, "Print GPU statistics and timings");
+  render_cmd->add_flag("--validate", render.validate,
+                       "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line, exit code 2, as for every other bad input.
+    std::string msg = e.what();
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "forest: %s (see forest --help)\n", msg.c_str());
+    return 2;
+  }
+
+  try {
+    if (*info_cmd) return app::run_info(info);
+    if (*gen_cmd) {
+      if (*seed_opt) gen.seed = gen_seed;
+      return app::run_generate(gen);
+    }
+    if (*render_cmd) {
+      if (*width_opt) render.width = width;
+      if (*height_opt) render.height = height;
+      return app::run_render(render);
+    }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "forest: %s\n", e.what());
+    return 2;
+  } catch (const vk::VkFailure& e) {
+    std::fprintf(stderr, "forest: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "forest: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}

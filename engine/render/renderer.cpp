@@ -1,0 +1,331 @@
+#include "engine/render/renderer.h"
+
+#include <cstring>
+
+#include "engine/vk/pipelines.h"
+
+namespace forest {
+
+namespace {
+
+constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr uint32_t kTimestampCount = 4;
+
+// Appends a mesh to the global vertex/index arrays; returns (first index, vertex offset).
+std::pair<uint32_t, int32_t> append(std::vector<Vertex>& vertices, std::vector<uint32_t>& indices, const Mesh& mesh) {
+  std::pair<uint32_t, int32_t> at{uint32_t(indices.size()), int32_t(vertices.size())};
+  vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+  indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+  return at;
+}
+
+}  // namespace
+
+Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height)
+    : ctx_(ctx), scene_(scene), width_(width), height_(height) {
+  // ---- geometry: one vertex and one index buffer for terrain and every model ----
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+  Mesh terrain = scene.terrain.mesh();
+  append(vertices, indices, terrain);
+  terrain_index_count_ = uint32_t(terrain.indices.size());
+
+  std::vector<gpu::Model> models;
+  std::vector<gpu::Leaf> leaves;
+  for (const TreeModel& tm : scene.models) {
+    gpu::Model m{};
+    m.bounding_sphere = tm.bounding_sphere;
+    m.bark_color = glm::vec4(tm.bark_color, 1.0f);
+    m.leaf_color = glm::vec4(tm.leaf_color, 1.0f);
+    auto [bf, bv] = append(vertices, indices, tm.branches);
+    m.branch_first_index = bf;
+    m.branch_index_count = uint32_t(tm.branches.indices.size());
+    m.branch_vertex_offset = bv;
+    auto [cf, cv] = append(vertices, indices, tm.leaf_card);
+    m.card_first_index = cf;
+    m.card_index_count = uint32_t(tm.leaf_card.indices.size());
+    m.card_vertex_offset = cv;
+    m.leaf_offset = uint32_t(leaves.size());
+    m.leaf_count = tm.leaf_card.indices.empty() ? 0 : uint32_t(tm.leaves.size());
+    for (const LeafPlacement& l : tm.leaves)
+      leaves.push_back({glm::vec4(l.position, l.scale), glm::vec4(l.rotation.x, l.rotation.y, l.rotation.z, l.rotation.w)});
+    models.push_back(m);
+  }
+  instance_count_ = uint32_t(scene.instances.size());
+
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  vertices_ = vk::create_buffer_from<Vertex>(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices);
+  indices_ = vk::create_buffer_from<uint32_t>(ctx, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, indices);
+  instances_ = vk::create_buffer_from<gpu::Instance>(ctx, storage, scene.instances);
+  models_ = vk::create_buffer_from<gpu::Model>(ctx, storage, models);
+  leaves_ = vk::create_buffer_from<gpu::Leaf>(ctx, storage, leaves);
+  frame_ = vk::create_buffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::upload);
+  // Room for one branch and one leaf command per instance.
+  commands_ = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * 2 * std::max(instance_count_, 1u),
+                                storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, vk::MemoryUse::device);
+  counts_ = vk::create_buffer(ctx, sizeof(gpu::DrawCounts),
+                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              vk::MemoryUse::device);
+  counts_readback_ = vk::create_buffer(ctx, sizeof(gpu::DrawCounts), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
+  image_readback_ = vk::create_buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      vk::MemoryUse::readback);
+  color_ = vk::create_image(ctx, {width, height}, kColorFormat,
+                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  depth_ = vk::create_image(ctx, {width, height}, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                            VK_IMAGE_ASPECT_DEPTH_BIT);
+
+  // ---- one descriptor set shared by every pipeline ----
+  const VkShaderStageFlags all = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  VkDescriptorSetLayoutBinding bindings[] = {
+      {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr},
+      {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {BINDING_MODELS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {BINDING_LEAVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {BINDING_COMMANDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {BINDING_DRAW_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+  };
+  VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  slci.bindingCount = uint32_t(std::size(bindings));
+  slci.pBindings = bindings;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &set_layout_));
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5}};
+  VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 2;
+  dpci.pPoolSizes = sizes;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &pool_));
+  VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  dsai.descriptorPool = pool_;
+  dsai.descriptorSetCount = 1;
+  dsai.pSetLayouts = &set_layout_;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, &set_));
+  const vk::Buffer* buffers[] = {&frame_, &instances_, &models_, &leaves_, &commands_, &counts_};
+  VkDescriptorBufferInfo infos[6];
+  VkWriteDescriptorSet writes[6];
+  for (uint32_t i = 0; i < 6; ++i) {
+    infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = set_;
+    writes[i].dstBinding = bindings[i].binding;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = bindings[i].descriptorType;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(ctx.device, 6, writes, 0, nullptr);
+
+  VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  plci.setLayoutCount = 1;
+  plci.pSetLayouts = &set_layout_;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &layout_));
+  create_pipelines();
+
+  VkQueryPoolCreateInfo qpci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qpci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qpci.queryCount = kTimestampCount;
+  VK_CHECK(vkCreateQueryPool(ctx.device, &qpci, nullptr, &timestamps_));
+  VkCommandBufferAllocateInfo cbai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  cbai.commandPool = ctx.command_pool;
+  cbai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cbai.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cbai, &cmd_));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &fence_));
+}
+
+void Renderer::create_pipelines() {
+  cull_ = vk::create_compute_pipeline(ctx_, layout_, "cull_comp");
+  vk::GraphicsPipelineDesc d;
+  d.color_format = kColorFormat;
+  d.depth_format = kDepthFormat;
+  vk::GraphicsPipelineDesc sky = d;
+  sky.vertex = "sky_vert";
+  sky.fragment = "sky_frag";
+  sky.vertex_input = false;
+  sky.cull = VK_CULL_MODE_NONE;
+  sky.depth_test = false;
+  sky.depth_write = false;
+  sky_ = vk::create_graphics_pipeline(ctx_, layout_, sky);
+  vk::GraphicsPipelineDesc terrain = d;
+  terrain.vertex = "terrain_vert";
+  terrain.fragment = "terrain_frag";
+  terrain_ = vk::create_graphics_pipeline(ctx_, layout_, terrain);
+  vk::GraphicsPipelineDesc branches = d;
+  branches.vertex = "branch_vert";
+  branches.fragment = "tree_frag";
+  branches_ = vk::create_graphics_pipeline(ctx_, layout_, branches);
+  vk::GraphicsPipelineDesc leaves = branches;
+  leaves.vertex = "leaf_vert";
+  leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
+  leaves_pipeline_ = vk::create_graphics_pipeline(ctx_, layout_, leaves);
+}
+
+Renderer::~Renderer() {
+  VkDevice dev = ctx_.device;
+  vkDeviceWaitIdle(dev);
+  vkDestroyFence(dev, fence_, nullptr);
+  vkFreeCommandBuffers(dev, ctx_.command_pool, 1, &cmd_);
+  vkDestroyQueryPool(dev, timestamps_, nullptr);
+  for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_}) vkDestroyPipeline(dev, p, nullptr);
+  vkDestroyPipelineLayout(dev, layout_, nullptr);
+  vkDestroyDescriptorPool(dev, pool_, nullptr);
+  vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
+  for (vk::Buffer* b : {&vertices_, &indices_, &instances_, &models_, &leaves_, &frame_, &commands_, &counts_,
+                        &counts_readback_, &image_readback_})
+    vk::destroy_buffer(ctx_, *b);
+  vk::destroy_image(ctx_, color_);
+  vk::destroy_image(ctx_, depth_);
+}
+
+void Renderer::record(VkCommandBuffer cmd, bool readback) {
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+  vkCmdResetQueryPool(cmd, timestamps_, 0, kTimestampCount);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, 0);
+
+  // ---- cull: compacted indirect draws ----
+  vkCmdFillBuffer(cmd, counts_.buffer, 0, sizeof(gpu::DrawCounts), 0);
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  if (instance_count_ > 0) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
+    vkCmdDispatch(cmd, (instance_count_ + CULL_GROUP_SIZE - 1) / CULL_GROUP_SIZE, 1, 1);
+  }
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                         VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                         VK_ACCESS_2_TRANSFER_READ_BIT);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, timestamps_, 1);
+
+  // ---- draw: sky, terrain, branches, leaves ----
+  vk::image_barrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                    VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  vk::image_barrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = color_.view;
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // the sky covers every pixel
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = depth_.view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {0.0f, 0};  // reversed Z: 0 is infinitely far
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {width_, height_}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, {width_, height_}};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+
+  VkDeviceSize zero = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
+  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_);
+  vkCmdDrawIndexed(cmd, terrain_index_count_, 1, 0, 0, 0);
+
+  if (instance_count_ > 0) {
+    const uint32_t stride = sizeof(gpu::DrawCommand);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, branches_);
+    vkCmdDrawIndexedIndirectCount(cmd, commands_.buffer, 0, counts_.buffer, offsetof(gpu::DrawCounts, branch_draws),
+                                  instance_count_, stride);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, leaves_pipeline_);
+    vkCmdDrawIndexedIndirectCount(cmd, commands_.buffer, VkDeviceSize(instance_count_) * stride, counts_.buffer,
+                                  offsetof(gpu::DrawCounts, leaf_draws), instance_count_, stride);
+  }
+  vkCmdEndRendering(cmd);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, timestamps_, 2);
+
+  // ---- readback: statistics always, pixels when asked ----
+  VkBufferCopy counts_copy{0, 0, sizeof(gpu::DrawCounts)};
+  vkCmdCopyBuffer(cmd, counts_.buffer, counts_readback_.buffer, 1, &counts_copy);
+  if (readback) {
+    vk::image_barrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {width_, height_, 1};
+    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image_readback_.buffer, 1, &region);
+  }
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 3);
+  VK_CHECK(vkEndCommandBuffer(cmd));
+}
+
+FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
+  CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
+  const SkyDesc& sky = scene_.desc.sky;
+  gpu::FrameData fd{};
+  fd.view_proj = cm.view_proj;
+  fd.inv_view_proj = glm::inverse(cm.view_proj);
+  fd.camera_pos = glm::vec4(cm.position, 1.0f);
+  fd.sun_dir = glm::vec4(sky.sun_direction, sky.sun_intensity);
+  fd.sky_zenith = glm::vec4(sky.zenith, 1.0f);
+  fd.sky_horizon = glm::vec4(sky.horizon, 1.0f);
+  fd.fog = glm::vec4(sky.horizon, sky.fog_density);
+  for (size_t i = 0; i < 6; ++i) fd.frustum[i] = cm.frustum[i];
+  fd.instance_count = instance_count_;
+  fd.leaf_command_base = instance_count_;
+  std::memcpy(frame_.mapped, &fd, sizeof(fd));
+
+  VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+  record(cmd_, image != nullptr);
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd_;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  VK_CHECK(vkResetFences(ctx_.device, 1, &fence_));
+  VK_CHECK(vkQueueSubmit2(ctx_.queue, 1, &si, fence_));
+  VK_CHECK(vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX));
+
+  FrameStats stats;
+  stats.instances = instance_count_;
+  gpu::DrawCounts counts;
+  std::memcpy(&counts, counts_readback_.mapped, sizeof(counts));
+  stats.branch_draws = counts.branch_draws;
+  stats.leaf_draws = counts.leaf_draws;
+  stats.leaves_drawn = counts.leaves_drawn;
+  uint64_t ts[kTimestampCount] = {};
+  VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, 0, kTimestampCount, sizeof(ts), ts, sizeof(uint64_t),
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  double period_ms = double(ctx_.properties.limits.timestampPeriod) * 1e-6;
+  stats.cull_ms = double(ts[1] - ts[0]) * period_ms;
+  stats.draw_ms = double(ts[2] - ts[1]) * period_ms;
+  stats.frame_ms = double(ts[3] - ts[0]) * period_ms;
+
+  if (image) {
+    image->width = width_;
+    image->height = height_;
+    image->rgba.resize(size_t(width_) * height_ * 4);
+    std::memcpy(image->rgba.data(), image_readback_.mapped, image->rgba.size());
+  }
+  return stats;
+}
+
+}  // namespace forest

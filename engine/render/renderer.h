@@ -1,0 +1,64 @@
+// Headless forest renderer: uploads a Scene once, then renders frames entirely from GPU
+// buffers: cull.comp writes compacted indirect draws, drawn with DrawIndexedIndirectCount.
+// Per-frame CPU work is O(1) in the number of tree instances.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "engine/scene/camera.h"
+#include "engine/scene/scene.h"
+#include "engine/vk/resources.h"
+
+namespace forest {
+
+struct FrameImage {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgba;  // sRGB, row-major, top row first
+  const uint8_t* pixel(uint32_t x, uint32_t y) const { return &rgba[(size_t(y) * width + x) * 4]; }
+};
+
+struct FrameStats {
+  uint32_t instances = 0;
+  uint32_t branch_draws = 0;   // visible trees
+  uint32_t leaf_draws = 0;
+  uint32_t leaves_drawn = 0;
+  double cull_ms = 0.0;        // GPU timestamps
+  double draw_ms = 0.0;
+  double frame_ms = 0.0;
+};
+
+class Renderer {
+ public:
+  Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Renders one frame and waits for it; fills `image` when given.
+  FrameStats render(const CameraDesc& camera, FrameImage* image);
+
+ private:
+  void create_pipelines();
+  void record(VkCommandBuffer cmd, bool readback);
+
+  vk::Context& ctx_;
+  const Scene& scene_;
+  uint32_t width_, height_;
+  uint32_t instance_count_ = 0;
+  uint32_t terrain_index_count_ = 0;
+
+  vk::Buffer vertices_, indices_, instances_, models_, leaves_;
+  vk::Buffer frame_, commands_, counts_, counts_readback_, image_readback_;
+  vk::Image color_, depth_;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
+  VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE;
+  VkQueryPool timestamps_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+};
+
+}  // namespace forest

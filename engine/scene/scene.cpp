@@ -1,0 +1,116 @@
+#include "engine/scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <glm/gtc/constants.hpp>
+
+#include "generators/bake/asset_io.h"
+#include "generators/common/random.h"
+#include "generators/methods/methods.h"
+
+namespace forest {
+
+namespace {
+
+uint32_t pack_tint(Rng& rng) {
+  // Per-tree color variation around 1.0 (128 = no change), decoded in the shaders.
+  auto c = [&](double spread) { return uint32_t(std::lround(128.0 + rng.uniform(-spread, spread))); };
+  uint32_t brightness = c(28.0);
+  return c(18.0) | (c(10.0) << 8) | (c(18.0) << 16) | (brightness << 24);
+}
+
+gpu::Instance make_instance(glm::vec3 position, float scale, float yaw_rad, uint32_t model, uint32_t tint) {
+  gpu::Instance inst{};
+  inst.position_scale = glm::vec4(position, scale);
+  inst.yaw_cos_sin = glm::vec2(std::cos(yaw_rad), std::sin(yaw_rad));
+  inst.model = model;
+  inst.tint = tint;
+  return inst;
+}
+
+// Uniform grid of accepted trunk positions for the minimum-spacing test.
+struct SpacingGrid {
+  float cell;
+  std::unordered_map<uint64_t, std::vector<glm::vec2>> cells;
+  static uint64_t key(int64_t x, int64_t z) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(z)); }
+  bool free(glm::vec2 p, float spacing) const {
+    if (spacing <= 0.0f) return true;
+    int64_t cx = int64_t(std::floor(p.x / cell)), cz = int64_t(std::floor(p.y / cell));
+    for (int64_t dz = -1; dz <= 1; ++dz)
+      for (int64_t dx = -1; dx <= 1; ++dx) {
+        auto it = cells.find(key(cx + dx, cz + dz));
+        if (it == cells.end()) continue;
+        for (glm::vec2 q : it->second)
+          if (glm::dot(p - q, p - q) < spacing * spacing) return false;
+      }
+    return true;
+  }
+  void add(glm::vec2 p) {
+    cells[key(int64_t(std::floor(p.x / cell)), int64_t(std::floor(p.y / cell)))].push_back(p);
+  }
+};
+
+}  // namespace
+
+std::vector<gpu::Instance> place_trees(const SceneDesc& desc, const Terrain& terrain, uint32_t* shortfall) {
+  std::vector<gpu::Instance> out;
+  const PlacementDesc& p = desc.placement;
+  SpacingGrid grid{std::max(p.min_spacing, 1.0f), {}};
+  Rng rng(hash64(p.seed, 0x7233e5));
+  float half = 0.5f * terrain.desc.size;
+
+  for (const TreeDesc& t : desc.trees) {
+    glm::vec3 pos(t.x, terrain.height_at(t.x, t.z), t.z);
+    out.push_back(make_instance(pos, t.scale, glm::radians(t.yaw_deg), t.species, pack_tint(rng)));
+    grid.add({t.x, t.z});
+  }
+
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (const SpeciesDesc& s : desc.species) cumulative.push_back(total += s.weight);
+
+  float min_normal_y = std::cos(glm::radians(p.max_slope_deg));
+  uint64_t attempts = uint64_t(p.count) * 30, placed = 0;
+  for (uint64_t a = 0; a < attempts && placed < p.count; ++a) {
+    // Uniform in the disc, clipped to the terrain.
+    double r = p.radius * std::sqrt(rng.uniform()), phi = rng.uniform(0.0, 2.0 * glm::pi<double>());
+    glm::vec2 xz = p.center + glm::vec2(float(r * std::cos(phi)), float(r * std::sin(phi)));
+    double pick = rng.uniform(0.0, total);
+    float scale = float(rng.uniform(p.scale_min, p.scale_max));
+    float yaw = float(rng.uniform(0.0, 2.0 * glm::pi<double>()));
+    uint32_t tint = pack_tint(rng);
+    if (std::abs(xz.x) > half || std::abs(xz.y) > half) continue;
+    if (terrain.normal_at(xz.x, xz.y).y < min_normal_y) continue;
+    if (!grid.free(xz, p.min_spacing)) continue;
+    uint32_t species = uint32_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
+    species = std::min(species, uint32_t(desc.species.size() - 1));
+    // Sink the base a little so trunks on slopes do not float.
+    glm::vec3 pos(xz.x, terrain.height_at(xz.x, xz.y) - 0.05f * scale, xz.y);
+    out.push_back(make_instance(pos, scale, yaw, species, tint));
+    grid.add(xz);
+    ++placed;
+  }
+  if (shortfall) *shortfall = uint32_t(p.count - placed);
+  return out;
+}
+
+Scene build_scene(const SceneDesc& desc) {
+  Scene scene;
+  scene.desc = desc;
+  scene.terrain = make_terrain(desc.terrain);
+  for (const SpeciesDesc& s : desc.species) {
+    if (!s.model.empty()) {
+      scene.models.push_back(load_glb(s.model));
+    } else {
+      GenerateOptions options;
+      options.seed = s.seed;
+      scene.models.push_back(generate_from_species(s.preset, options));
+    }
+  }
+  scene.instances = place_trees(desc, scene.terrain, &scene.placement_shortfall);
+  return scene;
+}
+
+}  // namespace forest

@@ -1,0 +1,80 @@
+// Scene files (TOML): resolution, camera, sun and sky, terrain, species and placement.
+// Every key is checked; unknown keys, wrong types, out-of-range numbers and NaN are
+// InputErrors naming file, line and key.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace forest {
+
+struct CameraDesc {
+  glm::vec3 position{0.0f, 20.0f, -80.0f};
+  glm::vec3 target{0.0f, 5.0f, 0.0f};
+  float fov_deg = 50.0f;  // vertical
+  float near = 0.1f;
+  float far = 2000.0f;    // culling distance
+};
+
+struct SkyDesc {
+  glm::vec3 sun_direction{0.45f, 0.75f, 0.35f};  // toward the sun, normalized on load
+  float sun_intensity = 3.0f;
+  glm::vec3 zenith{0.18f, 0.35f, 0.75f};   // linear RGB
+  glm::vec3 horizon{0.62f, 0.72f, 0.85f};
+  float fog_density = 0.002f;              // per meter
+};
+
+struct TerrainDesc {
+  float size = 400.0f;       // square side, meters, centered at the origin
+  uint32_t resolution = 128; // grid cells per side
+  float height = 20.0f;      // peak-to-valley amplitude, meters
+  float feature_size = 120.0f;  // wavelength of the largest hills, meters
+  uint32_t octaves = 5;
+  uint64_t seed = 1;
+};
+
+struct SpeciesDesc {
+  std::filesystem::path preset;  // species TOML (generated on load), or
+  std::filesystem::path model;   // a .glb asset
+  std::optional<uint64_t> seed;  // generation seed, overrides the preset's
+  float weight = 1.0f;
+  int line = 0;                  // for messages
+};
+
+struct PlacementDesc {
+  uint32_t count = 0;
+  uint64_t seed = 1;
+  float min_spacing = 3.0f;  // meters between trunks
+  float radius = 150.0f;     // trees fall within this distance of `center`
+  glm::vec2 center{0.0f};    // x, z
+  float scale_min = 0.8f, scale_max = 1.2f;
+  float max_slope_deg = 35.0f;
+};
+
+struct TreeDesc {  // a hand-placed tree
+  uint32_t species = 0;
+  float x = 0.0f, z = 0.0f;
+  float scale = 1.0f;
+  float yaw_deg = 0.0f;
+};
+
+struct SceneDesc {
+  std::filesystem::path file;
+  uint32_t width = 1280, height = 720;
+  CameraDesc camera;
+  SkyDesc sky;
+  TerrainDesc terrain;
+  std::vector<SpeciesDesc> species;
+  PlacementDesc placement;
+  std::vector<TreeDesc> trees;
+};
+
+SceneDesc load_scene_file(const std::filesystem::path& file);
+SceneDesc parse_scene_text(const std::string& text, const std::string& name,
+                           const std::filesystem::path& base_dir);
+
+}  // namespace forest

@@ -1,0 +1,96 @@
+#include "engine/scene/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "generators/common/random.h"
+
+namespace forest {
+
+namespace {
+
+float lattice(uint64_t seed, int64_t ix, int64_t iz, uint32_t octave) {
+  return float(hash64(seed + octave, uint64_t(ix), uint64_t(iz)) >> 11) * (1.0f / 9007199254740992.0f);
+}
+
+float smooth(float t) { return t * t * (3.0f - 2.0f * t); }
+
+// Value noise in [0, 1] with smooth interpolation.
+float value_noise(uint64_t seed, uint32_t octave, float x, float z) {
+  float fx = std::floor(x), fz = std::floor(z);
+  int64_t ix = int64_t(fx), iz = int64_t(fz);
+  float tx = smooth(x - fx), tz = smooth(z - fz);
+  float a = lattice(seed, ix, iz, octave), b = lattice(seed, ix + 1, iz, octave);
+  float c = lattice(seed, ix, iz + 1, octave), d = lattice(seed, ix + 1, iz + 1, octave);
+  return (a + (b - a) * tx) + ((c + (d - c) * tx) - (a + (b - a) * tx)) * tz;
+}
+
+}  // namespace
+
+Terrain make_terrain(const TerrainDesc& desc) {
+  Terrain t;
+  t.desc = desc;
+  uint32_t n = desc.resolution + 1;
+  t.heights.resize(size_t(n) * n);
+  float cell = desc.size / float(desc.resolution);
+  float norm = 0.0f;
+  for (uint32_t o = 0; o < desc.octaves; ++o) norm += std::pow(0.5f, float(o));
+  for (uint32_t j = 0; j < n; ++j)
+    for (uint32_t i = 0; i < n; ++i) {
+      float x = -0.5f * desc.size + float(i) * cell, z = -0.5f * desc.size + float(j) * cell;
+      float h = 0.0f, amp = 1.0f, freq = 1.0f / desc.feature_size;
+      for (uint32_t o = 0; o < desc.octaves; ++o) {
+        h += amp * value_noise(desc.seed, o, x * freq, z * freq);
+        amp *= 0.5f;
+        freq *= 2.0f;
+      }
+      t.heights[size_t(j) * n + i] = (h / norm - 0.5f) * desc.height;
+    }
+  return t;
+}
+
+float Terrain::height_at(float x, float z) const {
+  uint32_t n = desc.resolution + 1;
+  float cell = desc.size / float(desc.resolution);
+  float gx = std::clamp((x + 0.5f * desc.size) / cell, 0.0f, float(desc.resolution));
+  float gz = std::clamp((z + 0.5f * desc.size) / cell, 0.0f, float(desc.resolution));
+  uint32_t i = std::min(uint32_t(gx), desc.resolution - 1), j = std::min(uint32_t(gz), desc.resolution - 1);
+  float tx = gx - float(i), tz = gz - float(j);
+  auto h = [&](uint32_t a, uint32_t b) { return heights[size_t(b) * n + a]; };
+  float h0 = h(i, j) + (h(i + 1, j) - h(i, j)) * tx;
+  float h1 = h(i, j + 1) + (h(i + 1, j + 1) - h(i, j + 1)) * tx;
+  return h0 + (h1 - h0) * tz;
+}
+
+glm::vec3 Terrain::normal_at(float x, float z) const {
+  float e = 0.5f * desc.size / float(desc.resolution);
+  float dx = height_at(x + e, z) - height_at(x - e, z);
+  float dz = height_at(x, z + e) - height_at(x, z - e);
+  return glm::normalize(glm::vec3(-dx, 2.0f * e, -dz));
+}
+
+Mesh Terrain::mesh() const {
+  Mesh m;
+  uint32_t n = desc.resolution + 1;
+  float cell = desc.size / float(desc.resolution);
+  m.vertices.reserve(size_t(n) * n);
+  for (uint32_t j = 0; j < n; ++j)
+    for (uint32_t i = 0; i < n; ++i) {
+      float x = -0.5f * desc.size + float(i) * cell, z = -0.5f * desc.size + float(j) * cell;
+      Vertex v;
+      v.position = {x, heights[size_t(j) * n + i], z};
+      v.normal = normal_at(x, z);
+      v.uv = {float(i) / float(desc.resolution), float(j) / float(desc.resolution)};
+      m.vertices.push_back(v);
+    }
+  m.indices.reserve(size_t(desc.resolution) * desc.resolution * 6);
+  for (uint32_t j = 0; j < desc.resolution; ++j)
+    for (uint32_t i = 0; i < desc.resolution; ++i) {
+      uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      // (i,j) -> (i,j+1) -> (i+1,j) is counter-clockwise seen from +Y.
+      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+    }
+  return m;
+}
+
+}  // namespace forest

@@ -1,0 +1,295 @@
+#include "engine/vk/context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "generators/common/input_error.h"
+
+namespace forest::vk {
+
+void check(VkResult result, const char* what) {
+  if (result != VK_SUCCESS)
+    throw VkFailure(std::string("Vulkan call failed (VkResult ") + std::to_string(int(result)) +
+                    "): " + what);
+}
+
+bool validation_from_env() {
+  const char* v = std::getenv("FOREST_VALIDATION");
+  return v && std::strcmp(v, "0") != 0 && *v;
+}
+
+namespace {
+
+VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  auto* ctx = static_cast<Context*>(user);
+  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    ctx->validation_messages.fetch_add(1);
+    ctx->last_validation_message = data->pMessage ? data->pMessage : "";
+    std::fprintf(stderr, "validation %s: %s\n",
+                 severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning",
+                 data->pMessage ? data->pMessage : "");
+  }
+  return VK_FALSE;
+}
+
+const char* type_name(VkPhysicalDeviceType t) {
+  switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+
+int type_rank(VkPhysicalDeviceType t) {  // lower is preferred: discrete GPU first
+  switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
+  }
+}
+
+std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
+  uint32_t n = 0;
+  VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
+  std::vector<VkPhysicalDevice> out(n);
+  VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, out.data()));
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+uint32_t choose_device(VkInstance instance, std::string wanted) {
+  std::vector<DeviceReport> devices = list_devices(instance);
+  if (devices.empty()) throw VkFailure("no Vulkan device found (is mesa-vulkan-drivers installed?)");
+  const char* source = "--device";
+  if (wanted.empty()) {
+    if (const char* env = std::getenv("FOREST_DEVICE"); env && *env) {
+      wanted = env;
+      source = "FOREST_DEVICE";
+    }
+  }
+  if (!wanted.empty()) {
+    bool numeric = std::all_of(wanted.begin(), wanted.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    if (numeric) {
+      unsigned long i = std::strtoul(wanted.c_str(), nullptr, 10);
+      if (i < devices.size()) return uint32_t(i);
+    } else {
+      for (const DeviceReport& d : devices)
+        if (lower(d.name).find(lower(wanted)) != std::string::npos) return d.index;
+    }
+    std::string names;
+    for (const DeviceReport& d : devices)
+      names += (names.empty() ? "" : ", ") + std::to_string(d.index) + " " + d.name;
+    throw InputError(source, 0, "", "no Vulkan device matches '" + wanted + "' (devices: " + names + ")");
+  }
+  VkPhysicalDeviceProperties p{};
+  std::vector<VkPhysicalDevice> phys = physical_devices(instance);
+  uint32_t best = 0;
+  int best_rank = 99;
+  for (uint32_t i = 0; i < phys.size(); ++i) {
+    vkGetPhysicalDeviceProperties(phys[i], &p);
+    int r = type_rank(p.deviceType);
+    if (r < best_rank) best_rank = r, best = i;
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<DeviceReport> list_devices(VkInstance instance) {
+  std::vector<DeviceReport> out;
+  std::vector<VkPhysicalDevice> phys = physical_devices(instance);
+  for (uint32_t i = 0; i < phys.size(); ++i) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 p{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+    vkGetPhysicalDeviceProperties2(phys[i], &p);
+    out.push_back({i, p.properties.deviceName, type_name(p.properties.deviceType),
+                   std::string(driver.driverName) + " " + driver.driverInfo,
+                   p.properties.apiVersion});
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, bool>> required_features(VkPhysicalDevice physical) {
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+  VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
+  vkGetPhysicalDeviceFeatures2(physical, &f);
+  VkPhysicalDeviceProperties p{};
+  vkGetPhysicalDeviceProperties(physical, &p);
+  return {
+      {"Vulkan 1.3", p.apiVersion >= VK_API_VERSION_1_3},
+      {"drawIndirectCount", bool(f12.drawIndirectCount)},
+      {"shaderDrawParameters", bool(f11.shaderDrawParameters)},
+      {"samplerFilterMinmax", bool(f12.samplerFilterMinmax)},
+      {"dynamicRendering", bool(f13.dynamicRendering)},
+      {"synchronization2", bool(f13.synchronization2)},
+      {"timestamps (timestampComputeAndGraphics)", bool(p.limits.timestampComputeAndGraphics)},
+      {"multiDrawIndirect", bool(f.features.multiDrawIndirect)},
+      {"drawIndirectFirstInstance", bool(f.features.drawIndirectFirstInstance)},
+      {"maintenance4", bool(f13.maintenance4)},
+  };
+}
+
+void create_context(Context& ctx, const ContextOptions& options) {
+  ctx.validation = options.validation;
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "forest";
+  app.pEngineName = "forest";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  std::vector<const char*> layers, extensions;
+  if (ctx.validation) {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> props(n);
+    vkEnumerateInstanceLayerProperties(&n, props.data());
+    bool found = std::any_of(props.begin(), props.end(), [](const VkLayerProperties& l) {
+      return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
+    });
+    if (!found)
+      throw VkFailure("validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                      "(apt-get install vulkan-validationlayers)");
+    layers.push_back("VK_LAYER_KHRONOS_validation");
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messenger_info.pfnUserCallback = on_validation_message;
+  messenger_info.pUserData = &ctx;
+
+  VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ici.pNext = ctx.validation ? &messenger_info : nullptr;  // also covers create/destroy
+  ici.pApplicationInfo = &app;
+  ici.enabledLayerCount = uint32_t(layers.size());
+  ici.ppEnabledLayerNames = layers.data();
+  ici.enabledExtensionCount = uint32_t(extensions.size());
+  ici.ppEnabledExtensionNames = extensions.data();
+  VkResult r = vkCreateInstance(&ici, nullptr, &ctx.instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+    throw VkFailure("no Vulkan 1.3 driver found (install mesa-vulkan-drivers for lavapipe)");
+  VK_CHECK(r);
+  if (ctx.validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
+    VK_CHECK(create(ctx.instance, &messenger_info, nullptr, &ctx.messenger));
+  }
+
+  ctx.device_index = choose_device(ctx.instance, options.device);
+  ctx.physical = physical_devices(ctx.instance)[ctx.device_index];
+  vkGetPhysicalDeviceProperties(ctx.physical, &ctx.properties);
+  vkGetPhysicalDeviceMemoryProperties(ctx.physical, &ctx.memory);
+
+  std::string missing;
+  for (auto& [name, ok] : required_features(ctx.physical))
+    if (!ok) missing += (missing.empty() ? "" : ", ") + name;
+  if (!missing.empty())
+    throw VkFailure(std::string("device '") + ctx.properties.deviceName +
+                    "' lacks features the engine relies on: " + missing);
+
+  uint32_t nq = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical, &nq, nullptr);
+  std::vector<VkQueueFamilyProperties> families(nq);
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical, &nq, families.data());
+  bool found = false;
+  for (uint32_t i = 0; i < nq && !found; ++i)
+    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+        families[i].timestampValidBits > 0)
+      ctx.queue_family = i, found = true;
+  if (!found) throw VkFailure("no graphics+compute queue with timestamps on the chosen device");
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  qci.queueFamilyIndex = ctx.queue_family;
+  qci.queueCount = 1;
+  qci.pQueuePriorities = &priority;
+
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.dynamicRendering = VK_TRUE;
+  f13.synchronization2 = VK_TRUE;
+  f13.maintenance4 = VK_TRUE;  // required by 1.3; glslang emits LocalSizeId for SPIR-V 1.6
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+  f12.drawIndirectCount = VK_TRUE;
+  f12.samplerFilterMinmax = VK_TRUE;
+  VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
+  f11.shaderDrawParameters = VK_TRUE;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
+  features.features.multiDrawIndirect = VK_TRUE;
+  features.features.drawIndirectFirstInstance = VK_TRUE;
+
+  VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+  dci.queueCreateInfoCount = 1;
+  dci.pQueueCreateInfos = &qci;
+  VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
+  vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
+
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pci.queueFamilyIndex = ctx.queue_family;
+  VK_CHECK(vkCreateCommandPool(ctx.device, &pci, nullptr, &ctx.command_pool));
+}
+
+void destroy_context(Context& ctx) {
+  if (ctx.device) {
+    vkDeviceWaitIdle(ctx.device);
+    vkDestroyCommandPool(ctx.device, ctx.command_pool, nullptr);
+    vkDestroyDevice(ctx.device, nullptr);
+  }
+  if (ctx.messenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkDestroyDebugUtilsMessengerEXT"));
+    destroy(ctx.instance, ctx.messenger, nullptr);
+  }
+  if (ctx.instance) vkDestroyInstance(ctx.instance, nullptr);
+  ctx.device = VK_NULL_HANDLE;
+  ctx.instance = VK_NULL_HANDLE;
+  ctx.messenger = VK_NULL_HANDLE;
+}
+
+VkCommandBuffer begin_one_shot(Context& ctx) {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = ctx.command_pool;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, &cmd));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+  return cmd;
+}
+
+void end_one_shot(Context& ctx, VkCommandBuffer cmd) {
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &fence));
+  VK_CHECK(vkQueueSubmit2(ctx.queue, 1, &si, fence));
+  VK_CHECK(vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX));
+  vkDestroyFence(ctx.device, fence, nullptr);
+  vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
+}
+
+}  // namespace forest::vk

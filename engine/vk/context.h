@@ -1,0 +1,78 @@
+// Vulkan instance, device choice and the one graphics+compute queue the engine uses.
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace forest::vk {
+
+// Throws VkFailure (an internal error, exit code 1) when a Vulkan call fails.
+struct VkFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+void check(VkResult result, const char* what);
+#define VK_CHECK(call) ::forest::vk::check((call), #call)
+
+struct ContextOptions {
+  // Khronos validation layer; every message of severity warning or error is counted.
+  // Defaults to on when FOREST_VALIDATION=1 is set in the environment.
+  bool validation = false;
+  // Device index or case-insensitive name substring; empty = FOREST_DEVICE, then discrete first.
+  std::string device;
+};
+
+struct DeviceReport {
+  uint32_t index;
+  std::string name;
+  std::string type;
+  std::string driver;
+  uint32_t api_version;
+};
+
+struct Context {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  VkCommandPool command_pool = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties{};
+  VkPhysicalDeviceMemoryProperties memory{};
+  uint32_t device_index = 0;
+  bool validation = false;
+  // Validation messages of severity warning or error seen so far (tests assert 0).
+  std::atomic<uint32_t> validation_messages{0};
+  std::string last_validation_message;
+};
+
+// All devices of the instance, as `forest info` lists them.
+std::vector<DeviceReport> list_devices(VkInstance instance);
+// Creates instance + device; throws InputError for a bad --device, VkFailure when no device
+// has the features the engine relies on (the message names the missing ones).
+void create_context(Context& ctx, const ContextOptions& options);
+void destroy_context(Context& ctx);
+// Validation layer on by default when FOREST_VALIDATION=1.
+bool validation_from_env();
+
+// The features the engine relies on, by name, and whether the chosen device has them.
+std::vector<std::pair<std::string, bool>> required_features(VkPhysicalDevice physical);
+
+// Records and submits a one-off command buffer, waits for it.
+template <typename F>
+void submit_now(Context& ctx, F&& record);
+VkCommandBuffer begin_one_shot(Context& ctx);
+void end_one_shot(Context& ctx, VkCommandBuffer cmd);
+
+template <typename F>
+void submit_now(Context& ctx, F&& record) {
+  VkCommandBuffer cmd = begin_one_shot(ctx);
+  record(cmd);
+  end_one_shot(ctx, cmd);
+}
+
+}  // namespace forest::vk

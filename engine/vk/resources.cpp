@@ -1,0 +1,129 @@
+#include "engine/vk/resources.h"
+
+#include <cstring>
+
+namespace forest::vk {
+
+namespace {
+uint32_t memory_type(const Context& ctx, uint32_t bits, VkMemoryPropertyFlags want) {
+  for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
+    if ((bits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & want) == want) return i;
+  throw VkFailure("no Vulkan memory type with the required properties");
+}
+}  // namespace
+
+Buffer create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use) {
+  Buffer b;
+  b.size = size;
+  VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bci.size = size > 0 ? size : 16;  // zero-sized buffers are invalid; keep empty scenes legal
+  bci.usage = usage;
+  bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VK_CHECK(vkCreateBuffer(ctx.device, &bci, nullptr, &b.buffer));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
+  VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  if (use == MemoryUse::upload) want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  if (use == MemoryUse::readback)
+    want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = memory_type(ctx, req.memoryTypeBits, want);
+  VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &b.memory));
+  VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+  if (use != MemoryUse::device) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+  return b;
+}
+
+void destroy_buffer(Context& ctx, Buffer& b) {
+  if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
+  if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
+  b = {};
+}
+
+Buffer create_buffer_with_data(Context& ctx, VkBufferUsageFlags usage, std::span<const uint8_t> data) {
+  Buffer b = create_buffer(ctx, data.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::device);
+  if (data.empty()) return b;
+  Buffer staging = create_buffer(ctx, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::upload);
+  std::memcpy(staging.mapped, data.data(), data.size());
+  submit_now(ctx, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, data.size()};
+    vkCmdCopyBuffer(cmd, staging.buffer, b.buffer, 1, &region);
+  });
+  destroy_buffer(ctx, staging);
+  return b;
+}
+
+Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                   VkImageAspectFlags aspect) {
+  Image img;
+  img.format = format;
+  img.extent = extent;
+  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ici.imageType = VK_IMAGE_TYPE_2D;
+  ici.format = format;
+  ici.extent = {extent.width, extent.height, 1};
+  ici.mipLevels = 1;
+  ici.arrayLayers = 1;
+  ici.samples = VK_SAMPLE_COUNT_1_BIT;
+  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ici.usage = usage;
+  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VK_CHECK(vkCreateImage(ctx.device, &ici, nullptr, &img.image));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device, img.image, &req);
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &img.memory));
+  VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vci.image = img.image;
+  vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vci.format = format;
+  vci.subresourceRange = {aspect, 0, 1, 0, 1};
+  VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &img.view));
+  return img;
+}
+
+void destroy_image(Context& ctx, Image& img) {
+  if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
+  if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
+  if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+  img = {};
+}
+
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  b.srcStageMask = src_stage;
+  b.srcAccessMask = src_access;
+  b.dstStageMask = dst_stage;
+  b.dstAccessMask = dst_access;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = 1;
+  dep.pImageMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  b.srcStageMask = src_stage;
+  b.srcAccessMask = src_access;
+  b.dstStageMask = dst_stage;
+  b.dstAccessMask = dst_access;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+}  // namespace forest::vk

@@ -1,0 +1,51 @@
+// Buffers and images with their own memory: the engine allocates a handful per scene,
+// so one VkDeviceMemory per resource is simple and within every driver's limits.
+#pragma once
+#include <cstdint>
+#include <span>
+
+#include "engine/vk/context.h"
+
+namespace forest::vk {
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  // host-visible buffers stay mapped
+};
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+};
+
+enum class MemoryUse { device, upload, readback };
+
+Buffer create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
+void destroy_buffer(Context& ctx, Buffer& buffer);
+// Device-local buffer filled from `data` through a staging buffer.
+Buffer create_buffer_with_data(Context& ctx, VkBufferUsageFlags usage, std::span<const uint8_t> data);
+
+template <typename T>
+Buffer create_buffer_from(Context& ctx, VkBufferUsageFlags usage, std::span<const T> items) {
+  return create_buffer_with_data(
+      ctx, usage, {reinterpret_cast<const uint8_t*>(items.data()), items.size_bytes()});
+}
+
+Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                   VkImageAspectFlags aspect);
+void destroy_image(Context& ctx, Image& image);
+
+// One synchronization2 image barrier (whole image, one mip, one layer).
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                   VkImageLayout from, VkImageLayout to,
+                   VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+
+}  // namespace forest::vk

@@ -1,0 +1,174 @@
+#include "generators/methods/lsystem_method.h"
+
+#include <cmath>
+
+#include "generators/methods/model_builder.h"
+#include "generators/tree/leaves.h"
+#include "generators/tree/lsystem.h"
+#include "generators/tree/pipe_model.h"
+
+namespace forest {
+
+namespace {
+
+// Limits that keep a typo from exhausting the machine; generous for real plants.
+constexpr int64_t kMaxIterations = 12;
+constexpr size_t kMaxLeaves = 1'000'000;
+
+struct LSystemSpecies {
+  uint64_t seed = 1;
+  int iterations = 0;
+  LSystem system;
+  TurtleParams turtle;
+  float tip_radius = 0.002f;
+  float pipe_exponent = 2.0f;
+  LeafParams leaves;
+  MesherParams mesher;
+  glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
+  glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
+};
+
+void check_syntax(const TomlTable& t, std::string_view key, const std::string& s) {
+  if (auto err = check_lsystem_syntax(s)) t.fail(key, *err);
+}
+
+LSystemSpecies read_species(const TomlTable& t) {
+  t.check_keys({"method", "name", "seed", "iterations", "axiom", "angle", "angle_jitter",
+                "roll_jitter", "step", "step_jitter", "length_scale", "tip_radius",
+                "pipe_exponent", "tropism", "tropism_strength", "leaf_size", "leaf_size_jitter",
+                "leaf_angle", "leaf_angle_jitter", "leaves_per_tip", "leaves_along",
+                "ring_sides_min", "ring_sides_max", "bark_color", "leaf_color", "production"});
+  LSystemSpecies s;
+  t.string("name", "");  // type check only; the name is read by the caller
+  s.seed = uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53));
+  s.iterations = int(t.integer("iterations", 0, kMaxIterations));
+  s.system.axiom = t.string("axiom");
+  if (s.system.axiom.empty()) t.fail("axiom", "must not be empty");
+  check_syntax(t, "axiom", s.system.axiom);
+
+  TurtleParams& p = s.turtle;
+  p.angle_deg = float(t.number("angle", 22.5, -360.0, 360.0));
+  p.angle_jitter_deg = float(t.number("angle_jitter", 0.0, 0.0, 180.0));
+  p.roll_jitter_deg = float(t.number("roll_jitter", 0.0, 0.0, 180.0));
+  p.step = float(t.number("step", 1e-4, 100.0));
+  p.step_jitter = float(t.number("step_jitter", 0.0, 0.0, 0.9));
+  p.length_scale = float(t.number("length_scale", 0.9, 0.01, 10.0));
+  p.tropism = t.vec3("tropism", glm::vec3(0.0f, -1.0f, 0.0f), -1.0, 1.0);
+  p.tropism_strength = float(t.number("tropism_strength", 0.0, -1.0, 1.0));
+  if (p.tropism_strength != 0.0f && glm::length(p.tropism) < 1e-3f)
+    t.fail("tropism", "must not be the zero vector when tropism_strength is set");
+  s.tip_radius = float(t.number("tip_radius", 0.002, 1e-5, 1.0));
+  s.pipe_exponent = float(t.number("pipe_exponent", 2.0, 1.0, 4.0));
+
+  LeafParams& l = s.leaves;
+  l.size = float(t.number("leaf_size", 0.1, 0.0, 10.0));
+  l.size_jitter = float(t.number("leaf_size_jitter", 0.0, 0.0, 0.9));
+  l.angle_deg = float(t.number("leaf_angle", 40.0, 0.0, 180.0));
+  l.angle_jitter_deg = float(t.number("leaf_angle_jitter", 10.0, 0.0, 90.0));
+  l.per_tip = int(t.integer("leaves_per_tip", 1, 0, 16));
+  l.along = int(t.integer("leaves_along", 0, 0, 16));
+  p.leaf_angle_deg = l.angle_deg;
+  p.leaf_size = l.size;
+  p.leaf_size_jitter = l.size_jitter;
+
+  s.mesher.min_sides = int(t.integer("ring_sides_min", 3, 3, 32));
+  s.mesher.max_sides = int(t.integer("ring_sides_max", 8, 3, 32));
+  if (s.mesher.max_sides < s.mesher.min_sides)
+    t.fail("ring_sides_max", "must be >= ring_sides_min");
+  s.bark_color = t.vec3("bark_color", s.bark_color, 0.0, 1.0);
+  s.leaf_color = t.vec3("leaf_color", s.leaf_color, 0.0, 1.0);
+
+  for (const TomlTable& pt : t.tables("production")) {
+    pt.check_keys({"predecessor", "successor", "weight"});
+    Production prod;
+    std::string pred = pt.string("predecessor");
+    if (pred.size() != 1 || !((pred[0] >= 'A' && pred[0] <= 'Z') || (pred[0] >= 'a' && pred[0] <= 'z')))
+      pt.fail("predecessor", "must be a single letter, got '" + pred + "'");
+    prod.predecessor = pred[0];
+    prod.successor = pt.string("successor");
+    check_syntax(pt, "successor", prod.successor);
+    prod.weight = pt.number("weight", 1.0, 1e-9, 1e9);
+    s.system.productions.push_back(prod);
+  }
+  return s;
+}
+
+bool uses_leaf_symbols(const LSystem& system) {
+  if (system.axiom.find('L') != std::string::npos) return true;
+  for (const Production& p : system.productions)
+    if (p.successor.find('L') != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TreeModel generate_lsystem(const TomlTable& root, const std::string& species_name,
+                           const GenerateOptions& options) {
+  LSystemSpecies s = read_species(root);
+  uint64_t seed = options.seed.value_or(s.seed);
+
+  std::string symbols;
+  try {
+    symbols = rewrite(s.system, s.iterations, seed);
+  } catch (const InputError& e) {
+    root.fail("iterations", e.what());  // explosion guard: name the key to change
+  }
+  TreeGraph graph = interpret(symbols, s.turtle, seed);
+  assign_pipe_radii(graph, s.tip_radius, s.pipe_exponent);
+  // Leaves: where the author put L symbols, else on the terminal twigs.
+  if (!uses_leaf_symbols(s.system) && s.leaves.size > 0.0f)
+    place_twig_leaves(graph, s.leaves, seed);
+  if (s.leaves.size <= 0.0f) graph.leaves.clear();
+  if (graph.leaves.size() > kMaxLeaves)
+    root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
+              "gives " + std::to_string(graph.leaves.size()) + " leaves, more than " +
+                  std::to_string(kMaxLeaves));
+
+  ModelDescription d;
+  d.method = "lsystem";
+  d.species = root.string("name", species_name);
+  d.seed = seed;
+  d.parameters = toml_to_json(root.raw());
+  d.bark_color = s.bark_color;
+  d.leaf_color = s.leaf_color;
+  return build_tree_model(graph, d, s.mesher);
+}
+
+const char* lsystem_default_species_text() {
+  // Keep identical to scenes/species/fig2_1.toml (a unit test compares them).
+  return R"toml(method = "lsystem"
+# Seed 000, Fig. 2.1 (c): a bracketed L-system plant (after ABOP Fig. 1.24 f).
+#   n = 7, delta = 22.5 deg, axiom X, X -> F[[X]-X]F[+FX]-X, F -> FF.
+# The dissertation's OCR printed the brackets as ( ) and cuts the X production off after
+# "F[+FX]"; we restore the trailing "-X" (as in ABOP 1.24 f): without it the main axis would
+# stop after its second F and the plant would be lopsided and a third smaller.
+# The figure is planar; a random roll at every branch start makes it a 3D plant.
+name = "fig2_1"
+seed = 1
+iterations = 7
+axiom = "X"
+angle = 22.5          # degrees
+angle_jitter = 4.0    # degrees, per turn
+roll_jitter = 180.0   # degrees, random roll about the heading at every '['
+step = 0.012          # meters per F (128 F per first-level segment after 7 iterations)
+step_jitter = 0.1
+tip_radius = 0.0015   # meters
+pipe_exponent = 2.0   # da Vinci
+leaf_size = 0.05
+leaf_size_jitter = 0.25
+leaf_angle = 35.0
+leaves_per_tip = 1
+bark_color = [0.22, 0.16, 0.10]
+leaf_color = [0.14, 0.32, 0.06]
+
+[[production]]
+predecessor = "X"
+successor = "F[[X]-X]F[+FX]-X"
+
+[[production]]
+predecessor = "F"
+successor = "FF"
+)toml";
+}
+
+}  // namespace forest

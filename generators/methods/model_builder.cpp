@@ -1,0 +1,64 @@
+#include "generators/methods/model_builder.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace forest {
+
+namespace {
+nlohmann::json node_to_json(const toml::node& node) {
+  if (auto t = node.as_table()) return toml_to_json(*t);
+  if (auto a = node.as_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const toml::node& e : *a) out.push_back(node_to_json(e));
+    return out;
+  }
+  if (auto s = node.as_string()) return s->get();
+  if (auto i = node.as_integer()) return i->get();
+  if (auto f = node.as_floating_point()) return f->get();
+  if (auto b = node.as_boolean()) return b->get();
+  std::ostringstream text;  // date, time, date-time
+  node.visit([&](auto&& v) { text << v; });
+  return text.str();
+}
+}  // namespace
+
+nlohmann::json toml_to_json(const toml::table& table) {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto&& [key, value] : table) out[std::string(key.str())] = node_to_json(value);
+  return out;
+}
+
+TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
+                           const MesherParams& mesher) {
+  TreeModel model;
+  model.branches = mesh_branches(graph, mesher);
+  model.leaf_card = make_leaf_card();
+  model.leaves = graph.leaves;
+  model.bounding_sphere = bounding_sphere(model.branches, model.leaf_card, model.leaves);
+  model.bark_color = d.bark_color;
+  model.leaf_color = d.leaf_color;
+
+  float height = 0.0f;
+  for (const Vertex& v : model.branches.vertices) height = std::max(height, v.position.y);
+  for (const LeafPlacement& l : model.leaves)
+    for (const Vertex& v : model.leaf_card.vertices)
+      height = std::max(height, leaf_to_model(l, v.position).y);
+
+  nlohmann::json& m = model.meta;
+  m["format_version"] = 1;
+  m["generator"] = "forest";
+  m["method"] = d.method;
+  m["species"] = d.species;
+  m["seed"] = d.seed;
+  m["parameters"] = d.parameters;
+  m["node_count"] = graph.nodes.size();
+  m["leaf_count"] = model.leaves.size();
+  m["triangle_count"] = model.branches.indices.size() / 3;
+  const glm::vec4& s = model.bounding_sphere;
+  m["bounding_sphere"] = {s.x, s.y, s.z, s.w};
+  m["height"] = height;
+  return model;
+}
+
+}  // namespace forest

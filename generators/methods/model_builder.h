@@ -1,0 +1,33 @@
+// What every method does after its skeleton pass: mesh, bound, and describe the model
+// (the extras.forest metadata). Shared so that all methods write the same metadata.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include "generators/tree/mesher.h"
+#include "generators/tree/tree_model.h"
+
+namespace forest {
+
+struct ModelDescription {
+  std::string method;        // method id
+  std::string species;       // preset name
+  uint64_t seed = 0;         // the seed actually used
+  nlohmann::json parameters = nlohmann::json::object();  // the species table as JSON
+  glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
+  glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
+};
+
+// Meshes the graph (branches + leaf card + leaves), computes the bounding sphere and fills
+// meta with format_version, generator, method, seed, species, parameters, node_count,
+// leaf_count, triangle_count, bounding_sphere and height.
+TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& description,
+                           const MesherParams& mesher = {});
+
+// A TOML table as JSON (dates and times as their TOML text); deterministic key order.
+nlohmann::json toml_to_json(const toml::table& table);
+
+}  // namespace forest

@@ -1,0 +1,13 @@
+// Branch radii by the pipe model (da Vinci's rule, seed 000 ch5 eq. 5.1 generalized):
+// r_parent^e = sum of r_child^e, with every tip at tip_radius. e = 2 is da Vinci's
+// area-preserving rule, 2.49 Murray's, 3 the upper end seen in real trees.
+#pragma once
+#include "generators/tree/tree_graph.h"
+
+namespace forest {
+
+// Overwrites every node's radius, bottom-up; deterministic. Requires parent < own index.
+// A node with one child gets that child's radius (the pipe passes through unchanged).
+void assign_pipe_radii(TreeGraph& graph, float tip_radius, float exponent);
+
+}  // namespace forest

@@ -1,0 +1,35 @@
+// A meshed tree: what an asset (.glb) stores and what the engine uploads.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "generators/tree/tree_graph.h"
+
+namespace forest {
+
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  glm::vec2 uv{0.0f};
+};
+
+struct Mesh {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangle list, counter-clockwise seen from outside
+};
+
+struct TreeModel {
+  Mesh branches;                        // bark tubes, model space
+  Mesh leaf_card;                       // one leaf, local space: blade along +Y, normal +Z
+  std::vector<LeafPlacement> leaves;    // instances of leaf_card (in priority order once baked)
+  glm::vec4 bounding_sphere{0.0f};      // xyz center, w radius: encloses branches and leaves
+  glm::vec3 bark_color{0.30f, 0.22f, 0.15f};  // linear RGB
+  glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};  // linear RGB
+  nlohmann::json meta = nlohmann::json::object();  // extras.forest: method, seed, parameters...
+};
+
+}  // namespace forest

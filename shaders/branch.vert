@@ -1,0 +1,28 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Bark: one indirect draw per visible tree; gl_DrawID finds the tree instance.
+#extension GL_ARB_shader_draw_parameters : require
+#include "common.glsl"
+
+layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec3 out_albedo;
+layout(location = 3) out vec2 out_ao_translucency;
+
+void main() {
+  Instance inst = instances[commands[gl_DrawIDARB].instance];
+  Model m = models[inst.model];
+  vec3 world = rotate_yaw(in_position, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
+  out_world = world;
+  out_normal = rotate_yaw(in_normal, inst.yaw_cos_sin);
+  // Darker toward the trunk base, and bark stripes along v for a little texture.
+  float stripes = 0.85 + 0.15 * sin(in_uv.y * 6.2831 * 3.0 + in_uv.x * 12.566);
+  out_albedo = m.bark_color.rgb * stripes * unpack_tint(inst.tint).a;
+  out_ao_translucency = vec2(0.8, 0.0);
+  gl_Position = frame.view_proj * vec4(world, 1.0);
+}

@@ -1,0 +1,39 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Leaves: one indirect draw per visible tree drawing its leaves [0, k) as instances of the
+// model's leaf card; gl_InstanceIndex (which includes firstInstance) is the leaf.
+#extension GL_ARB_shader_draw_parameters : require
+#include "common.glsl"
+
+layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec3 out_albedo;
+layout(location = 3) out vec2 out_ao_translucency;
+
+float hash(uint x) {
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return float(x) / 4294967295.0;
+}
+
+void main() {
+  DrawCommand d = commands[frame.leaf_command_base + gl_DrawIDARB];
+  Instance inst = instances[d.instance];
+  Model m = models[inst.model];
+  Leaf leaf = leaves[gl_InstanceIndex];
+  vec3 local = rotate_quat(leaf.rotation, in_position * leaf.position_scale.w) + leaf.position_scale.xyz;
+  vec3 world = rotate_yaw(local, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
+  out_world = world;
+  out_normal = rotate_yaw(rotate_quat(leaf.rotation, in_normal), inst.yaw_cos_sin);
+  vec4 tint = unpack_tint(inst.tint);
+  float v = 0.75 + 0.5 * hash(uint(gl_InstanceIndex));
+  out_albedo = m.leaf_color.rgb * tint.rgb * tint.a * v * (0.9 + 0.2 * in_uv.y);
+  // Leaves deep inside the crown see less sky: a cheap occlusion term from the crown sphere.
+  float depth = length(local - m.bounding_sphere.xyz) / max(m.bounding_sphere.w, 1e-3);
+  out_ao_translucency = vec2(mix(0.35, 1.0, clamp(depth * 1.3 - 0.2, 0.0, 1.0)), 0.45);
+  gl_Position = frame.view_proj * vec4(world, 1.0);
+}

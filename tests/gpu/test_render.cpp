@@ -1,0 +1,187 @@
+// Renders tiny scenes on the Vulkan device (lavapipe in CI) with the validation layer on,
+// and checks pixel properties: sky above, terrain below, trees exactly where they project.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/render/renderer.h"
+#include "engine/scene/scene.h"
+
+using namespace forest;
+
+namespace {
+
+const std::string kSource = FOREST_SOURCE_DIR;
+
+std::string tiny_scene(const std::string& extra) {
+  return R"(
+[render]
+width = 160
+height = 120
+[camera]
+position = [0, 6, -24]
+target = [0, 5, 0]
+fov = 50
+[terrain]
+size = 200
+resolution = 32
+height = 1.0
+seed = 3
+[[species]]
+preset = "species/broadleaf.toml"
+seed = 11
+)" + extra;
+}
+
+struct Rendered {
+  FrameImage image;
+  FrameStats stats;
+  Scene scene;
+};
+
+class GpuTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    vk::ContextOptions options;
+    options.validation = true;  // every GPU test runs under the Khronos validation layer
+    vk::create_context(ctx_, options);
+  }
+  void TearDown() override {
+    vk::destroy_context(ctx_);
+    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
+  }
+  Rendered render(const std::string& text) {
+    Rendered r;
+    SceneDesc desc = parse_scene_text(text, "test.toml", kSource + "/scenes");
+    r.scene = build_scene(desc);
+    Renderer renderer(ctx_, r.scene, desc.width, desc.height);
+    r.stats = renderer.render(desc.camera, &r.image);
+    return r;
+  }
+  vk::Context ctx_;
+};
+
+bool is_sky(const uint8_t* p) { return p[2] > p[0] && p[2] >= p[1] && p[2] > 120; }
+
+// Terrain and trees are green/brown: blue is the weakest channel.
+bool is_vegetation_or_ground(const uint8_t* p) { return p[2] < p[1] && p[2] <= p[0] + 8; }
+
+size_t count_differences(const FrameImage& a, const FrameImage& b, int x0, int y0, int x1, int y1, bool inside) {
+  size_t n = 0;
+  for (int y = 0; y < int(a.height); ++y)
+    for (int x = 0; x < int(a.width); ++x) {
+      bool in = x >= x0 && x <= x1 && y >= y0 && y <= y1;
+      if (in != inside) continue;
+      const uint8_t *p = a.pixel(uint32_t(x), uint32_t(y)), *q = b.pixel(uint32_t(x), uint32_t(y));
+      if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) ++n;
+    }
+  return n;
+}
+
+}  // namespace
+
+TEST_F(GpuTest, SkyAboveTerrainBelow) {
+  Rendered r = render(tiny_scene(""));
+  const FrameImage& img = r.image;
+  ASSERT_EQ(img.width, 160u);
+  ASSERT_EQ(img.height, 120u);
+  for (uint32_t x = 0; x < img.width; x += 8) {
+    EXPECT_TRUE(is_sky(img.pixel(x, 2))) << "top row pixel " << x << " is not sky";
+    EXPECT_TRUE(is_vegetation_or_ground(img.pixel(x, img.height - 3))) << "bottom row pixel " << x << " is not terrain";
+  }
+  // The horizon: sky meets terrain roughly where the camera's horizontal plane projects.
+  CameraMatrices cm = camera_matrices(r.scene.desc.camera, 160.0f / 120.0f);
+  glm::vec3 far_ground = project_to_pixel(cm, glm::vec3(0.0f, 0.0f, 95.0f), 160.0f, 120.0f);
+  int y_sky = int(far_ground.y) - 6, y_ground = int(far_ground.y) + 6;
+  ASSERT_GT(y_sky, 0);
+  ASSERT_LT(y_ground, 120);
+  EXPECT_TRUE(is_sky(img.pixel(80, uint32_t(y_sky))));
+  EXPECT_FALSE(is_sky(img.pixel(80, uint32_t(y_ground))));
+  EXPECT_EQ(r.stats.instances, 0u);
+  EXPECT_EQ(r.stats.branch_draws, 0u);
+}
+
+TEST_F(GpuTest, TreeDrawnExactlyWhereItProjects) {
+  Rendered bare = render(tiny_scene(""));
+  Rendered tree = render(tiny_scene("[[tree]]\nspecies = 0\nx = 0\nz = 0\n"));
+  ASSERT_EQ(tree.stats.instances, 1u);
+  EXPECT_EQ(tree.stats.branch_draws, 1u);
+  EXPECT_EQ(tree.stats.leaf_draws, 1u);
+  EXPECT_EQ(tree.stats.leaves_drawn, tree.scene.models[0].leaves.size());
+
+  // Screen rectangle of the instance's bounding sphere.
+  const gpu::Instance& inst = tree.scene.instances[0];
+  glm::vec4 s = tree.scene.models[0].bounding_sphere;
+  glm::vec3 c = glm::vec3(inst.position_scale) + glm::vec3(s) * inst.position_scale.w;  // yaw 0
+  float r = s.w * inst.position_scale.w;
+  CameraMatrices cm = camera_matrices(tree.scene.desc.camera, 160.0f / 120.0f);
+  float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+  for (int i = 0; i < 8; ++i) {
+    glm::vec3 corner = c + r * glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+    glm::vec3 p = project_to_pixel(cm, corner, 160.0f, 120.0f);
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+  size_t inside = count_differences(bare.image, tree.image, int(x0) - 1, int(y0) - 1, int(x1) + 1, int(y1) + 1, true);
+  size_t outside = count_differences(bare.image, tree.image, int(x0) - 1, int(y0) - 1, int(x1) + 1, int(y1) + 1, false);
+  EXPECT_EQ(outside, 0u) << "tree pixels outside its projected bounding sphere";
+  EXPECT_GT(inside, 400u) << "the tree covers too few pixels";
+
+  // The trunk, a third of the way up, is tree-colored (not sky) on the tree's axis.
+  glm::vec3 trunk = project_to_pixel(cm, glm::vec3(inst.position_scale) + glm::vec3(0, 0.5f, 0), 160.0f, 120.0f);
+  const uint8_t* p = tree.image.pixel(uint32_t(trunk.x), uint32_t(trunk.y));
+  const uint8_t* q = bare.image.pixel(uint32_t(trunk.x), uint32_t(trunk.y));
+  EXPECT_TRUE(p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) << "no tree at the trunk's pixel";
+  EXPECT_TRUE(is_vegetation_or_ground(p));
+  // The crown (above the trunk) replaces sky by vegetation.
+  glm::vec3 crown = project_to_pixel(cm, glm::vec3(c), 160.0f, 120.0f);
+  size_t green = 0;
+  for (int dy = -3; dy <= 3; ++dy)
+    for (int dx = -3; dx <= 3; ++dx) {
+      const uint8_t* g = tree.image.pixel(uint32_t(crown.x + dx), uint32_t(crown.y + dy));
+      green += g[1] > g[2] && g[1] >= g[0];
+    }
+  EXPECT_GT(green, 20u) << "the crown around the bounding-sphere center is not leaf-colored";
+}
+
+TEST_F(GpuTest, TreeBehindCameraIsCulledOnTheGpu) {
+  Rendered bare = render(tiny_scene(""));
+  Rendered behind = render(tiny_scene("[[tree]]\nspecies = 0\nx = 0\nz = -60\n"));
+  EXPECT_EQ(behind.stats.instances, 1u);
+  EXPECT_EQ(behind.stats.branch_draws, 0u);
+  EXPECT_EQ(behind.stats.leaves_drawn, 0u);
+  EXPECT_EQ(count_differences(bare.image, behind.image, 0, 0, -1, -1, false), 0u);
+}
+
+TEST_F(GpuTest, ThousandInstancesAllVisibleFromAbove) {
+  // Camera high above, looking down: every tree is in the frustum, so the GPU must emit one
+  // branch and one leaf draw per instance and draw every leaf of every tree.
+  std::string text = tiny_scene(R"(
+[placement]
+count = 1000
+seed = 5
+min_spacing = 2.0
+radius = 60
+)");
+  text.replace(text.find("position = [0, 6, -24]"), 22, "position = [0, 400, -1]");
+  text.replace(text.find("target = [0, 5, 0]"), 18, "target = [0, 0, 0]");
+  Rendered r = render(text);
+  ASSERT_EQ(r.stats.instances, 1000u);
+  EXPECT_EQ(r.stats.branch_draws, 1000u);
+  EXPECT_EQ(r.stats.leaf_draws, 1000u);
+  EXPECT_EQ(uint64_t(r.stats.leaves_drawn), uint64_t(1000) * r.scene.models[0].leaves.size());
+  // Seen from above, the forest floor is mostly covered by crowns: lots of leaf green
+  // in the centre of the image.
+  size_t green = 0, total = 0;
+  for (uint32_t y = 40; y < 80; ++y)
+    for (uint32_t x = 60; x < 100; ++x, ++total) {
+      const uint8_t* p = r.image.pixel(x, y);
+      green += p[1] > p[0] && p[1] > p[2];
+    }
+  EXPECT_GT(green, total / 4);
+}
+
+TEST_F(GpuTest, SameSceneRendersIdentically) {
+  Rendered a = render(tiny_scene("[[tree]]\nspecies = 0\nx = 1\nz = 2\nyaw = 40\n"));
+  Rendered b = render(tiny_scene("[[tree]]\nspecies = 0\nx = 1\nz = 2\nyaw = 40\n"));
+  EXPECT_EQ(a.image.rgba, b.image.rgba);
+}
