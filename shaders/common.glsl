@@ -26,7 +26,8 @@ vec3 sky_color(vec3 d) {
 vec3 shade(vec3 albedo, vec3 n, vec3 world, float ambient_occlusion, float translucency) {
   vec3 l = frame.sun_dir.xyz;
   float sun = max(dot(n, l), 0.0) + translucency * max(-dot(n, l), 0.0);
-  vec3 sky = mix(frame.sky_horizon.rgb * 0.5, frame.sky_zenith.rgb, n.y * 0.5 + 0.5);
+  // Hemisphere ambient: sky from above, light bounced off the forest floor from below.
+  vec3 sky = mix(vec3(0.20, 0.19, 0.13), mix(frame.sky_horizon.rgb, frame.sky_zenith.rgb, 0.5), n.y * 0.5 + 0.5);
   vec3 lit = albedo * (sun * frame.sun_dir.w * vec3(1.0, 0.95, 0.85) * 0.5 + sky * 0.6 * ambient_occlusion);
   float dist = length(world - frame.camera_pos.xyz);
   float fog = 1.0 - exp(-dist * frame.fog.w);

@@ -7,7 +7,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "generators/bake/asset_io.h"
-#include "generators/common/random.h"
+#include "generators/common/rng.h"
 #include "generators/methods/methods.h"
 
 namespace forest {
@@ -58,7 +58,7 @@ std::vector<gpu::Instance> place_trees(const SceneDesc& desc, const Terrain& ter
   std::vector<gpu::Instance> out;
   const PlacementDesc& p = desc.placement;
   SpacingGrid grid{std::max(p.min_spacing, 1.0f), {}};
-  Rng rng(hash64(p.seed, 0x7233e5));
+  Rng rng(p.seed, 0x7233e5);  // stream: placement
   float half = 0.5f * terrain.desc.size;
 
   for (const TreeDesc& t : desc.trees) {

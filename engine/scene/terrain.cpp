@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "generators/common/random.h"
+#include "generators/common/rng.h"
 
 namespace forest {
 

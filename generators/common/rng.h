@@ -13,6 +13,11 @@ inline uint64_t mix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
+// Stateless hash of up to three integers: lattice noise and per-item variation.
+inline uint64_t hash64(uint64_t a, uint64_t b = 0, uint64_t c = 0) {
+  return mix64(mix64(mix64(a) ^ b) ^ c);
+}
+
 // PCG32 (XSH RR), seeded through SplitMix64 so nearby seeds give unrelated streams.
 // `stream` separates the passes of one generator (rewriting, turtle, leaves...), so adding a
 // random draw to one pass does not shift the numbers of another.
