@@ -33,7 +33,7 @@ int run_render(const RenderArgs& args) {
     FrameStats stats;
     auto t_render = clock::now();
     {
-      Renderer renderer(ctx, scene, desc.width, desc.height);
+      Renderer renderer(ctx, scene, desc.width, desc.height, desc.samples);
       t_render = clock::now();
       stats = renderer.render(desc.camera, &image);
     }

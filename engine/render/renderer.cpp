@@ -1,5 +1,6 @@
 #include "engine/render/renderer.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/vk/pipelines.h"
@@ -22,8 +23,13 @@ std::pair<uint32_t, int32_t> append(std::vector<Vertex>& vertices, std::vector<u
 
 }  // namespace
 
-Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height)
+Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, uint32_t samples)
     : ctx_(ctx), scene_(scene), width_(width), height_(height) {
+  VkSampleCountFlags supported = ctx.properties.limits.framebufferColorSampleCounts &
+                                 ctx.properties.limits.framebufferDepthSampleCounts;
+  while (samples > 1 && !(supported & samples)) samples >>= 1;
+  samples_ = VkSampleCountFlagBits(std::max(samples, 1u));
+
   // ---- geometry: one vertex and one index buffer for terrain and every model ----
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;
@@ -73,8 +79,11 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
                                       vk::MemoryUse::readback);
   color_ = vk::create_image(ctx, {width, height}, kColorFormat,
                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  if (samples_ > VK_SAMPLE_COUNT_1_BIT)
+    color_msaa_ = vk::create_image(ctx, {width, height}, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                   VK_IMAGE_ASPECT_COLOR_BIT, samples_);
   depth_ = vk::create_image(ctx, {width, height}, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                            VK_IMAGE_ASPECT_DEPTH_BIT);
+                            VK_IMAGE_ASPECT_DEPTH_BIT, samples_);
 
   // ---- one descriptor set shared by every pipeline ----
   const VkShaderStageFlags all = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -139,6 +148,7 @@ void Renderer::create_pipelines() {
   vk::GraphicsPipelineDesc d;
   d.color_format = kColorFormat;
   d.depth_format = kDepthFormat;
+  d.samples = samples_;
   vk::GraphicsPipelineDesc sky = d;
   sky.vertex = "sky_vert";
   sky.fragment = "sky_frag";
@@ -175,6 +185,7 @@ Renderer::~Renderer() {
                         &counts_readback_, &image_readback_})
     vk::destroy_buffer(ctx_, *b);
   vk::destroy_image(ctx_, color_);
+  vk::destroy_image(ctx_, color_msaa_);
   vk::destroy_image(ctx_, depth_);
 }
 
@@ -206,6 +217,11 @@ void Renderer::record(VkCommandBuffer cmd, bool readback) {
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                     VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  if (color_msaa_.image)
+    vk::image_barrier(cmd, color_msaa_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
   vk::image_barrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                     VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
@@ -218,11 +234,18 @@ void Renderer::record(VkCommandBuffer cmd, bool readback) {
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // the sky covers every pixel
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  if (color_msaa_.image) {  // render multisampled, resolve (average) into the single-sample image
+    color.imageView = color_msaa_.view;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    color.resolveImageView = color_.view;
+    color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  }
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = depth_.view;
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // nothing reads depth after the frame (yet)
   depth.clearValue.depthStencil = {0.0f, 0};  // reversed Z: 0 is infinitely far
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, {width_, height_}};

@@ -29,7 +29,8 @@ struct FrameStats {
 
 class Renderer {
  public:
-  Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height);
+  // `samples`: MSAA samples per pixel, lowered to what the device supports.
+  Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, uint32_t samples = 1);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -49,7 +50,13 @@ class Renderer {
 
   vk::Buffer vertices_, indices_, instances_, models_, leaves_;
   vk::Buffer frame_, commands_, counts_, counts_readback_, image_readback_;
-  vk::Image color_, depth_;
+  vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
+  VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
+
+ public:
+  uint32_t samples() const { return uint32_t(samples_); }
+
+ private:
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;

@@ -28,9 +28,11 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 }
 
 void read_render(const TomlTable& t, SceneDesc& s) {
-  t.check_keys({"width", "height"});
+  t.check_keys({"width", "height", "samples"});
   s.width = uint32_t(t.integer("width", s.width, 16, 8192));
   s.height = uint32_t(t.integer("height", s.height, 16, 8192));
+  s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
+  if (s.samples & (s.samples - 1)) t.fail("samples", "must be 1, 2, 4 or 8, got " + std::to_string(s.samples));
 }
 
 void read_camera(const TomlTable& t, CameraDesc& c) {

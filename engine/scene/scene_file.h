@@ -65,6 +65,7 @@ struct TreeDesc {  // a hand-placed tree
 struct SceneDesc {
   std::filesystem::path file;
   uint32_t width = 1280, height = 720;
+  uint32_t samples = 4;  // MSAA samples per pixel: 1, 2, 4 or 8
   CameraDesc camera;
   SkyDesc sky;
   TerrainDesc terrain;

@@ -55,7 +55,7 @@ Buffer create_buffer_with_data(Context& ctx, VkBufferUsageFlags usage, std::span
 }
 
 Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                   VkImageAspectFlags aspect) {
+                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples) {
   Image img;
   img.format = format;
   img.extent = extent;
@@ -65,7 +65,7 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
   ici.extent = {extent.width, extent.height, 1};
   ici.mipLevels = 1;
   ici.arrayLayers = 1;
-  ici.samples = VK_SAMPLE_COUNT_1_BIT;
+  ici.samples = samples;
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = usage;
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;

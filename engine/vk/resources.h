@@ -37,7 +37,7 @@ Buffer create_buffer_from(Context& ctx, VkBufferUsageFlags usage, std::span<cons
 }
 
 Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                   VkImageAspectFlags aspect);
+                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 void destroy_image(Context& ctx, Image& image);
 
 // One synchronization2 image barrier (whole image, one mip, one layer).

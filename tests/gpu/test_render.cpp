@@ -54,7 +54,7 @@ class GpuTest : public ::testing::Test {
     Rendered r;
     SceneDesc desc = parse_scene_text(text, "test.toml", kSource + "/scenes");
     r.scene = build_scene(desc);
-    Renderer renderer(ctx_, r.scene, desc.width, desc.height);
+    Renderer renderer(ctx_, r.scene, desc.width, desc.height, desc.samples);
     r.stats = renderer.render(desc.camera, &r.image);
     return r;
   }
@@ -184,4 +184,18 @@ TEST_F(GpuTest, SameSceneRendersIdentically) {
   Rendered a = render(tiny_scene("[[tree]]\nspecies = 0\nx = 1\nz = 2\nyaw = 40\n"));
   Rendered b = render(tiny_scene("[[tree]]\nspecies = 0\nx = 1\nz = 2\nyaw = 40\n"));
   EXPECT_EQ(a.image.rgba, b.image.rgba);
+}
+
+TEST_F(GpuTest, MultisamplingResolvesEdgesOnly) {
+  const std::string tree = "[[tree]]\nspecies = 0\nx = 0\nz = 0\n";
+  std::string one = tiny_scene(tree), four = tiny_scene(tree);
+  one.insert(one.find("height = 120") + 12, "\nsamples = 1");
+  four.insert(four.find("height = 120") + 12, "\nsamples = 4");
+  Rendered a = render(one), b = render(four);
+  size_t differ = count_differences(a.image, b.image, 0, 0, -1, -1, false);
+  EXPECT_GT(differ, 30u) << "4x MSAA changed no edge pixel";
+  EXPECT_LT(differ, size_t(160 * 120) / 4) << "MSAA changed far more than edges";
+  // Interior sky is the same with and without multisampling.
+  for (uint32_t x = 0; x < 160; x += 4)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.image.pixel(x, 3)[c], b.image.pixel(x, 3)[c], 1);
 }
