@@ -41,7 +41,7 @@ LSystemSpecies read_species(const TomlTable& t) {
   LSystemSpecies s;
   t.string("name", "");  // type check only; the name is read by the caller
   s.seed = uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53));
-  s.iterations = int(t.integer("iterations", 0, kMaxIterations));
+  s.iterations = int(t.integer("iterations", 0, kMaxIterations));  // required
   s.system.axiom = t.string("axiom");
   if (s.system.axiom.empty()) t.fail("axiom", "must not be empty");
   check_syntax(t, "axiom", s.system.axiom);
@@ -50,7 +50,7 @@ LSystemSpecies read_species(const TomlTable& t) {
   p.angle_deg = float(t.number("angle", 22.5, -360.0, 360.0));
   p.angle_jitter_deg = float(t.number("angle_jitter", 0.0, 0.0, 180.0));
   p.roll_jitter_deg = float(t.number("roll_jitter", 0.0, 0.0, 180.0));
-  p.step = float(t.number("step", 1e-4, 100.0));
+  p.step = float(t.number("step", 1.0, 1e-4, 100.0));
   p.step_jitter = float(t.number("step_jitter", 0.0, 0.0, 0.9));
   p.length_scale = float(t.number("length_scale", 0.9, 0.01, 10.0));
   p.tropism = t.vec3("tropism", glm::vec3(0.0f, -1.0f, 0.0f), -1.0, 1.0);
