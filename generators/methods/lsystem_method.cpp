@@ -1,6 +1,15 @@
+// Species keys of method "lsystem" (all optional unless marked; ranges are checked):
+//   name, seed (0..2^53), iterations (required, 0..12), axiom (required; see lsystem.h for
+//   the alphabet), angle / angle_jitter / roll_jitter (degrees), step (m) / step_jitter
+//   (fraction) / length_scale (factor of '!'), tropism ([x, y, z]) / tropism_strength,
+//   tip_radius (m) / pipe_exponent (pipe model), leaf_size (m, 0 = no leaves) /
+//   leaf_size_jitter / leaf_angle / leaf_angle_jitter (deg) / leaves_per_tip / leaves_along,
+//   ring_sides_min / ring_sides_max (mesher), bark_color / leaf_color (linear RGB), and
+//   [[production]] tables { predecessor = "X" (one letter), successor = "...", weight = 1.0 }.
 #include "generators/methods/lsystem_method.h"
 
 #include <cmath>
+#include <vector>
 
 #include "generators/methods/model_builder.h"
 #include "generators/tree/leaves.h"
@@ -116,8 +125,20 @@ TreeModel generate_lsystem(const TomlTable& root, const std::string& species_nam
   TreeGraph graph = interpret(symbols, s.turtle, seed);
   assign_pipe_radii(graph, s.tip_radius, s.pipe_exponent);
   // Leaves: where the author put L symbols, else on the terminal twigs.
-  if (!uses_leaf_symbols(s.system) && s.leaves.size > 0.0f)
+  if (!uses_leaf_symbols(s.system) && s.leaves.size > 0.0f) {
+    // Refuse absurd leaf counts before allocating them (an upper bound: tips and others).
+    size_t tips = graph.nodes.size();
+    std::vector<char> has_child(graph.nodes.size(), 0);
+    for (const TreeNode& n : graph.nodes)
+      if (n.parent >= 0) has_child[size_t(n.parent)] = 1;
+    for (char c : has_child) tips -= size_t(c);
+    size_t bound = tips * size_t(s.leaves.per_tip) + (graph.nodes.size() - tips) * size_t(s.leaves.along);
+    if (bound > kMaxLeaves)
+      root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
+                "could give up to " + std::to_string(bound) + " leaves, more than " +
+                    std::to_string(kMaxLeaves));
     place_twig_leaves(graph, s.leaves, seed);
+  }
   if (s.leaves.size <= 0.0f) graph.leaves.clear();
   if (graph.leaves.size() > kMaxLeaves)
     root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",

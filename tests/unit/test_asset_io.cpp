@@ -1,0 +1,258 @@
+// .glb encode/decode: round trip, determinism, robustness against malformed files.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "generators/bake/asset_io.h"
+#include "generators/common/input_error.h"
+#include "generators/methods/methods.h"
+
+using namespace forest;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kSmallSpecies = R"(method = "lsystem"
+iterations = 3
+axiom = "X"
+angle = 25.0
+angle_jitter = 5.0
+roll_jitter = 180.0
+step = 0.3
+step_jitter = 0.2
+leaves_per_tip = 2
+leaf_size = 0.2
+bark_color = [0.3, 0.2, 0.1]
+leaf_color = [0.1, 0.4, 0.05]
+[[production]]
+predecessor = "X"
+successor = "F[[X]-X]F[+FX]-X"
+[[production]]
+predecessor = "F"
+successor = "FF"
+)";
+
+TreeModel small_model(uint64_t seed = 7) {
+  return generate_from_species_text(kSmallSpecies, "small.toml", {seed});
+}
+
+// A GLB container around arbitrary JSON and binary chunk.
+std::vector<uint8_t> make_glb(const nlohmann::json& j, std::vector<uint8_t> bin) {
+  std::string text = j.dump();
+  while (text.size() % 4) text.push_back(' ');
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<uint8_t> out;
+  auto u32 = [&](uint32_t v) {
+    uint8_t b[4];
+    std::memcpy(b, &v, 4);
+    out.insert(out.end(), b, b + 4);
+  };
+  u32(0x46546C67u);
+  u32(2);
+  u32(uint32_t(12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  u32(uint32_t(text.size()));
+  u32(0x4E4F534Au);
+  out.insert(out.end(), text.begin(), text.end());
+  if (!bin.empty()) {
+    u32(uint32_t(bin.size()));
+    u32(0x004E4942u);
+    out.insert(out.end(), bin.begin(), bin.end());
+  }
+  return out;
+}
+
+template <class T>
+void append(std::vector<uint8_t>& bin, const std::vector<T>& v) {
+  const auto* p = reinterpret_cast<const uint8_t*>(v.data());
+  bin.insert(bin.end(), p, p + v.size() * sizeof(T));
+  while (bin.size() % 4) bin.push_back(0);
+}
+
+// One triangle with indices of the given component type (5121, 5123 or 5125).
+std::pair<nlohmann::json, std::vector<uint8_t>> triangle_asset(int index_type,
+                                                               std::vector<uint32_t> idx = {0, 1, 2}) {
+  std::vector<uint8_t> bin;
+  append(bin, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+  append(bin, std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1});
+  append(bin, std::vector<float>{0, 0, 1, 0, 0, 1});
+  size_t idx_offset = bin.size();
+  if (index_type == 5121) append(bin, std::vector<uint8_t>(idx.begin(), idx.end()));
+  if (index_type == 5123) append(bin, std::vector<uint16_t>(idx.begin(), idx.end()));
+  if (index_type == 5125) append(bin, idx);
+  size_t isize = index_type == 5121 ? 1 : index_type == 5123 ? 2 : 4;
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", bin.size()}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+        {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 36}},
+        {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 24}},
+        {{"buffer", 0}, {"byteOffset", idx_offset}, {"byteLength", idx.size() * isize}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
+         {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
+        {{"bufferView", 3}, {"componentType", index_type}, {"count", idx.size()}, {"type", "SCALAR"}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}}}}}}},
+      {"nodes", {{{"name", "branches"}, {"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  return {j, bin};
+}
+
+}  // namespace
+
+TEST(AssetIo, RoundTrip) {
+  TreeModel m = small_model();
+  ASSERT_GT(m.branches.indices.size(), 0u);
+  ASSERT_GT(m.leaves.size(), 0u);
+  TreeModel d = decode_glb(encode_glb(m), "mem.glb");
+  ASSERT_EQ(d.branches.vertices.size(), m.branches.vertices.size());
+  EXPECT_EQ(d.branches.indices, m.branches.indices);
+  for (size_t i = 0; i < m.branches.vertices.size(); ++i) {
+    EXPECT_EQ(d.branches.vertices[i].position, m.branches.vertices[i].position);
+    EXPECT_NEAR(glm::length(d.branches.vertices[i].normal - m.branches.vertices[i].normal), 0.0f, 1e-6f);
+    EXPECT_EQ(d.branches.vertices[i].uv, m.branches.vertices[i].uv);
+  }
+  ASSERT_EQ(d.leaf_card.vertices.size(), m.leaf_card.vertices.size());
+  EXPECT_EQ(d.leaf_card.indices, m.leaf_card.indices);
+  ASSERT_EQ(d.leaves.size(), m.leaves.size());
+  for (size_t i = 0; i < m.leaves.size(); ++i) {
+    EXPECT_EQ(d.leaves[i].position, m.leaves[i].position);
+    EXPECT_NEAR(std::abs(glm::dot(d.leaves[i].rotation, m.leaves[i].rotation)), 1.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(d.leaves[i].scale, m.leaves[i].scale);
+  }
+  EXPECT_EQ(d.bark_color, m.bark_color);
+  EXPECT_EQ(d.leaf_color, m.leaf_color);
+  EXPECT_EQ(d.bounding_sphere, m.bounding_sphere);
+  EXPECT_EQ(d.meta, m.meta);
+  EXPECT_EQ(d.meta["method"], "lsystem");
+  EXPECT_EQ(d.meta["seed"], 7);
+}
+
+TEST(AssetIo, EncodingIsDeterministic) {
+  TreeModel m = small_model();
+  EXPECT_EQ(encode_glb(m), encode_glb(m));
+  EXPECT_EQ(encode_glb(small_model(7)), encode_glb(small_model(7)));
+  EXPECT_NE(encode_glb(small_model(7)), encode_glb(small_model(8)));
+  std::vector<uint8_t> bytes = encode_glb(m);
+  EXPECT_EQ(bytes.size() % 4, 0u);
+  EXPECT_EQ(std::memcmp(bytes.data(), "glTF", 4), 0);
+}
+
+TEST(AssetIo, LayoutFollowsTheFormat) {
+  std::vector<uint8_t> bytes = encode_glb(small_model());
+  uint32_t json_len;
+  std::memcpy(&json_len, bytes.data() + 12, 4);
+  nlohmann::json j = nlohmann::json::parse(bytes.begin() + 20, bytes.begin() + 20 + json_len);
+  EXPECT_EQ(j["extensionsUsed"], nlohmann::json::array({"EXT_mesh_gpu_instancing"}));
+  EXPECT_EQ(j["extras"]["forest"]["format_version"], 1);
+  EXPECT_EQ(j["nodes"][0]["name"], "tree");
+  EXPECT_EQ(j["nodes"][0]["children"].size(), 2u);
+  for (const auto& v : j["bufferViews"]) {
+    EXPECT_EQ(v.value("byteOffset", 0) % 4, 0);
+    EXPECT_FALSE(v.contains("byteStride"));
+  }
+  const auto& leaves = j["nodes"][2];
+  EXPECT_EQ(leaves["name"], "leaves");
+  const auto& attrs = leaves["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+  for (const char* a : {"TRANSLATION", "ROTATION", "SCALE"}) {
+    int acc = attrs[a];
+    EXPECT_FALSE(j["bufferViews"][int(j["accessors"][acc]["bufferView"])].contains("target")) << a;
+    EXPECT_EQ(j["accessors"][acc]["componentType"], 5126);
+  }
+  EXPECT_EQ(j["materials"][1]["doubleSided"], true);
+  EXPECT_TRUE(j["accessors"][0].contains("min"));
+}
+
+TEST(AssetIo, AcceptsSmallIndexTypesAndNoLeaves) {
+  for (int type : {5121, 5123, 5125}) {
+    auto [j, bin] = triangle_asset(type);
+    TreeModel m = decode_glb(make_glb(j, bin), "tri.glb");
+    EXPECT_EQ(m.branches.indices, std::vector<uint32_t>({0, 1, 2})) << type;
+    EXPECT_EQ(m.branches.vertices.size(), 3u);
+    EXPECT_TRUE(m.leaves.empty());
+    EXPECT_GT(m.bounding_sphere.w, 0.5f);  // computed, since there is no extras.forest
+  }
+}
+
+TEST(AssetIo, RejectsInconsistentAssets) {
+  auto bad = [](auto edit, std::vector<uint32_t> idx = {0, 1, 2}) {
+    auto [j, bin] = triangle_asset(5125, idx);
+    edit(j);
+    EXPECT_THROW(decode_glb(make_glb(j, bin), "bad.glb"), InputError) << j.dump();
+  };
+  bad([](nlohmann::json&) {}, {0, 1, 3});  // index out of range
+  bad([](nlohmann::json& j) { j["accessors"][0]["count"] = 1000; });
+  bad([](nlohmann::json& j) { j["accessors"][3]["componentType"] = 5126; });
+  bad([](nlohmann::json& j) { j["accessors"][3]["count"] = 2; });  // not triangles
+  bad([](nlohmann::json& j) { j["accessors"][0]["type"] = "VEC2"; });
+  bad([](nlohmann::json& j) { j["accessors"][1]["count"] = 2; });  // attribute counts differ
+  bad([](nlohmann::json& j) { j["bufferViews"][0]["byteOffset"] = 1 << 20; });
+  bad([](nlohmann::json& j) { j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 17; });
+  bad([](nlohmann::json& j) { j["meshes"][0]["primitives"][0]["mode"] = 1; });
+  bad([](nlohmann::json& j) { j["nodes"][0]["name"] = "trunk"; });  // no branches node
+  bad([](nlohmann::json& j) { j["buffers"][0]["uri"] = "/etc/passwd"; });
+}
+
+TEST(AssetIo, CorruptBytesNeverCrash) {
+  std::vector<uint8_t> good = encode_glb(small_model());
+  // Truncation anywhere.
+  for (size_t len = 0; len < good.size(); len += (len < 400 ? 1 : 97)) {
+    std::vector<uint8_t> cut(good.begin(), good.begin() + std::ptrdiff_t(len));
+    EXPECT_THROW(decode_glb(cut, "cut.glb"), InputError) << len;
+  }
+  // Byte flips: either a clean decode (flip in unread data) or an InputError.
+  size_t rejected = 0;
+  for (size_t at = 0; at < good.size(); at += (at < 2000 ? 3 : 211)) {
+    for (uint8_t mask : {uint8_t(0x01), uint8_t(0x80), uint8_t(0xFF)}) {
+      std::vector<uint8_t> b = good;
+      b[at] ^= mask;
+      try {
+        TreeModel m = decode_glb(b, "flip.glb");
+        for (uint32_t i : m.branches.indices) ASSERT_LT(i, m.branches.vertices.size());
+      } catch (const InputError&) {
+        ++rejected;
+      }
+    }
+  }
+  EXPECT_GT(rejected, 10u);
+  EXPECT_THROW(decode_glb(std::vector<uint8_t>(100, 0), "zeros.glb"), InputError);
+}
+
+TEST(AssetIo, FilesAtomicAndErrors) {
+  fs::path dir = fs::temp_directory_path() / ("forest_asset_io_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  TreeModel m = small_model();
+  fs::path file = dir / "tree.glb";
+  save_glb(m, file);
+  EXPECT_EQ(load_glb(file).meta, m.meta);
+  std::ifstream in(file, std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes, encode_glb(m));
+  size_t files = 0;
+  for (auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);  // no temporary left behind
+  save_glb(m, file);     // overwriting works
+  EXPECT_THROW(save_glb(m, dir / "missing" / "tree.glb"), InputError);
+  EXPECT_THROW(load_glb(dir / "nope.glb"), InputError);
+  EXPECT_THROW(load_glb(dir), InputError);
+  try {
+    load_glb(dir / "nope.glb");
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nope.glb"), std::string::npos);
+  }
+  std::ofstream(dir / "junk.glb") << "this is not a glb";
+  EXPECT_THROW(load_glb(dir / "junk.glb"), InputError);
+  fs::remove_all(dir);
+}
