@@ -8,16 +8,13 @@
 
 #include "generators/common/rng.h"
 
+#include "generators/tree/frames.h"
+
 namespace forest {
 
 namespace {
 constexpr float kPi = 3.14159265358979323846f;
 
-// A unit vector perpendicular to unit `a`, chosen deterministically.
-glm::vec3 any_perpendicular(glm::vec3 a) {
-  glm::vec3 helper = std::abs(a.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  return glm::normalize(glm::cross(a, helper));
-}
 }  // namespace
 
 LeafPlacement orient_leaf(glm::vec3 position, glm::vec3 axis, float azimuth, float tilt,

@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generators/tree/frames.h"
+
 namespace forest {
 
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-
-glm::vec3 any_perpendicular(glm::vec3 a) {
-  glm::vec3 helper = std::abs(a.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  return glm::normalize(glm::cross(a, helper));
-}
 
 glm::vec3 rotate_about(glm::vec3 v, glm::vec3 k, float angle) {
   float c = std::cos(angle), s = std::sin(angle);
