@@ -35,4 +35,11 @@ int run_generate(const GenerateArgs& args) {
   return 0;
 }
 
+int run_make_inputs(const MakeInputsArgs& args) {
+  make_inputs(args.out);
+  for (const MethodEntry& m : method_table())
+    if (m.make_inputs) std::printf("wrote %s/%s/\n", args.out.c_str(), m.id);
+  return 0;
+}
+
 }  // namespace forest::app

@@ -20,6 +20,11 @@ struct GenerateArgs {
 };
 int run_generate(const GenerateArgs& args);
 
+struct MakeInputsArgs {
+  std::string out;
+};
+int run_make_inputs(const MakeInputsArgs& args);
+
 struct RenderArgs {
   std::string scene;
   std::string out;

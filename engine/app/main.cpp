@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
   auto* seed_opt = gen_cmd->add_option("--seed", gen_seed, "Random seed (overrides the preset's)");
   gen_cmd->add_option("--out", gen.out, "Output .glb")->required();
 
+  app::MakeInputsArgs inputs;
+  auto* inputs_cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
+  inputs_cmd->add_option("--out", inputs.out, "Output folder (one subfolder per method)")->required();
+
   app::RenderArgs render;
   uint32_t width = 0, height = 0;
   auto* render_cmd = cli.add_subcommand("render", "Render a scene headless to an image");
@@ -62,6 +66,7 @@ int main(int argc, char** argv) {
       if (*seed_opt) gen.seed = gen_seed;
       return app::run_generate(gen);
     }
+    if (*inputs_cmd) return app::run_make_inputs(inputs);
     if (*render_cmd) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;

@@ -7,6 +7,23 @@ namespace forest {
 
 namespace {
 
+// Every modeling method, one line each.
+const MethodEntry kMethods[] = {
+    {"lsystem", generate_lsystem, lsystem_default_species_text, nullptr},
+};
+
+const MethodEntry* find_method(const std::string& id) {
+  for (const MethodEntry& m : kMethods)
+    if (id == m.id) return &m;
+  return nullptr;
+}
+
+std::string known_methods() {
+  std::string known;
+  for (const MethodEntry& m : kMethods) known += (known.empty() ? "" : ", ") + std::string(m.id);
+  return known;
+}
+
 TreeModel generate(const TomlDocument& doc, const std::string& species_name,
                    const GenerateOptions& options) {
   TomlTable root = doc.root();
@@ -17,13 +34,13 @@ TreeModel generate(const TomlDocument& doc, const std::string& species_name,
     if (int(key.source().begin.line) < method_line)
       throw InputError(doc.name(), int(key.source().begin.line), std::string(key.str()),
                        "`method` must be the first key of a species file");
-  if (method == "lsystem") return generate_lsystem(root, species_name, options);
-  std::string known;
-  for (const std::string& id : method_ids()) known += (known.empty() ? "" : ", ") + id;
-  root.fail("method", "unknown method '" + method + "' (known: " + known + ")");
+  if (const MethodEntry* m = find_method(method)) return m->generate(root, species_name, options);
+  root.fail("method", "unknown method '" + method + "' (known: " + known_methods() + ")");
 }
 
 }  // namespace
+
+std::span<const MethodEntry> method_table() { return kMethods; }
 
 TreeModel generate_from_species(const std::filesystem::path& species_file,
                                 const GenerateOptions& options) {
@@ -37,13 +54,23 @@ TreeModel generate_from_species_text(const std::string& text, const std::string&
   return generate(doc, std::filesystem::path(name).stem().string(), options);
 }
 
-std::vector<std::string> method_ids() { return {"lsystem"}; }
+std::vector<std::string> method_ids() {
+  std::vector<std::string> ids;
+  for (const MethodEntry& m : kMethods) ids.push_back(m.id);
+  return ids;
+}
 
 std::string default_species_text(const std::string& method) {
-  if (method == "lsystem") return lsystem_default_species_text();
-  std::string known;
-  for (const std::string& id : method_ids()) known += (known.empty() ? "" : ", ") + id;
-  throw InputError("", 0, "--method", "unknown method '" + method + "' (known: " + known + ")");
+  if (const MethodEntry* m = find_method(method)) return m->default_species_text();
+  throw InputError("", 0, "--method", "unknown method '" + method + "' (known: " + known_methods() + ")");
+}
+
+void make_inputs(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string(), 0, "--out", "cannot create folder: " + ec.message());
+  for (const MethodEntry& m : kMethods)
+    if (m.make_inputs) m.make_inputs(dir / m.id);
 }
 
 }  // namespace forest
