@@ -22,6 +22,7 @@ struct LeafPlacement {
   glm::vec3 position{0.0f};
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z (glm order)
   float scale = 1.0f;                           // blade length, meters
+  glm::vec3 color{1.0f};                        // per-leaf multiplier of the model's leaf color
 };
 
 struct TreeGraph {

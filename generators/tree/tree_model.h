@@ -22,9 +22,24 @@ struct Mesh {
   std::vector<uint32_t> indices;  // triangle list, counter-clockwise seen from outside
 };
 
+// A simplified branch mesh and its geometric error: the largest distance (model-space
+// meters) between it and LOD0, as reported by meshopt_simplify.
+struct MeshLod {
+  Mesh mesh;
+  float error = 0.0f;
+};
+
+// 8-bit RGBA image, row-major, top row first (the leaf texture: alpha is the leaf's mask).
+struct Image8 {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+};
+
 struct TreeModel {
-  Mesh branches;                        // bark tubes, model space
+  Mesh branches;                        // bark tubes, model space (LOD0)
+  std::vector<MeshLod> branch_lods;     // LOD1, LOD2, ...: coarser, errors increasing
   Mesh leaf_card;                       // one leaf, local space: blade along +Y, normal +Z
+  Image8 leaf_texture;                  // mapped on leaf_card by its uv; empty = untextured
   std::vector<LeafPlacement> leaves;    // instances of leaf_card (in priority order once baked)
   glm::vec4 bounding_sphere{0.0f};      // xyz center, w radius: encloses branches and leaves
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};  // linear RGB
