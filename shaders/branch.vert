@@ -13,6 +13,7 @@ layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
+layout(location = 4) out vec3 out_uv_layer;
 
 void main() {
   Instance inst = instances[commands[gl_DrawIDARB].instance];
@@ -24,5 +25,6 @@ void main() {
   float stripes = 0.85 + 0.15 * sin(in_uv.y * 6.2831 * 3.0 + in_uv.x * 12.566);
   out_albedo = m.bark_color.rgb * stripes * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
+  out_uv_layer = vec3(in_uv, 0.0);
   gl_Position = frame.view_proj * vec4(world, 1.0);
 }

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// One thread per tree instance: frustum test of the bounding sphere, then append the
-// compacted indirect draws (branches, and the model's leaves as instances of its card).
+// One thread per tree instance: frustum test of the bounding sphere, branch LOD by projected
+// error, then append the compacted indirect draws (branches, and the model's leaves as
+// instances of its card).
 #include "common.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
@@ -19,8 +20,17 @@ void main() {
   for (int p = 0; p < 6; ++p)
     if (dot(frame.frustum[p].xyz, center) + frame.frustum[p].w < -radius) return;
 
+  // Coarsest level whose error, projected at the sphere's nearest point, stays under the
+  // allowed pixels (errors are non-decreasing along the chain).
+  float dist = max(distance(center, frame.camera_pos.xyz) - radius, 1e-3);
+  uint lod = 0;
+  for (uint k = 1; k < m.lod_count; ++k)
+    if (m.lod_error[k] * s * frame.lod.x / dist <= frame.lod.y) lod = k;
+
   uint b = atomicAdd(counts.branch_draws, 1);
-  commands[b] = DrawCommand(m.branch_index_count, 1, m.branch_first_index, m.branch_vertex_offset, 0, i);
+  atomicAdd(counts.lod_draws[lod], 1);
+  atomicAdd(counts.branch_triangles, m.lod_index_count[lod] / 3);
+  commands[b] = DrawCommand(m.lod_index_count[lod], 1, m.lod_first_index[lod], m.lod_vertex_offset[lod], 0, i);
   if (m.leaf_count > 0) {
     uint l = atomicAdd(counts.leaf_draws, 1);
     atomicAdd(counts.leaves_drawn, m.leaf_count);

@@ -10,6 +10,8 @@ namespace forest::gpu {
 using uint = uint32_t;
 using vec2 = glm::vec2;
 using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
 using mat4 = glm::mat4;
 #define GPU_STRUCT struct alignas(16)
 #else
@@ -23,6 +25,10 @@ using mat4 = glm::mat4;
 #define BINDING_LEAVES 3
 #define BINDING_COMMANDS 4
 #define BINDING_DRAW_COUNTS 5
+#define BINDING_LEAF_TEXTURES 6
+
+#define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
+#define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
 
 #define CULL_GROUP_SIZE 64
 
@@ -36,6 +42,7 @@ GPU_STRUCT FrameData {
   vec4 sky_horizon;     // rgb linear
   vec4 fog;             // rgb linear, w = density per meter
   vec4 frustum[6];      // planes, xyz = inward normal, w = distance; dot(n,p)+w >= 0 inside
+  vec4 lod;             // x = pixels per meter at distance 1, y = allowed error in pixels (0: LOD0 only)
   uint instance_count;
   uint leaf_command_base;  // index of the first leaf command in the command buffer
   uint pad0;
@@ -55,20 +62,27 @@ GPU_STRUCT Model {
   vec4 bounding_sphere;      // model space, xyz center, w radius
   vec4 bark_color;           // linear rgb
   vec4 leaf_color;           // linear rgb
-  uint branch_first_index;
-  uint branch_index_count;
-  int branch_vertex_offset;
+  // Branch LOD chain: [0] full detail; lod_error = model-space error in meters, non-decreasing.
+  uvec4 lod_first_index;
+  uvec4 lod_index_count;
+  ivec4 lod_vertex_offset;
+  vec4 lod_error;
+  uint lod_count;
+  uint leaf_texture_layer;
   uint card_first_index;     // the one leaf card mesh of this model
   uint card_index_count;
   int card_vertex_offset;
   uint leaf_offset;          // first leaf of this model in leaves[]
   uint leaf_count;
+  uint pad0;
+  uint pad1;
 };
 
 // One leaf: an instance of the model's leaf card (glTF EXT_mesh_gpu_instancing TRS).
 GPU_STRUCT Leaf {
   vec4 position_scale;  // model space position, w = uniform scale
   vec4 rotation;        // unit quaternion xyzw
+  vec4 color;           // rgb multiplier of the model's leaf color
 };
 
 // VkDrawIndexedIndirectCommand followed by the tree instance the draw belongs to.
@@ -86,7 +100,8 @@ struct DrawCounts {
   uint branch_draws;
   uint leaf_draws;
   uint leaves_drawn;
-  uint pad;
+  uint branch_triangles;
+  uint lod_draws[MAX_BRANCH_LODS];  // branch draws per LOD level
 };
 
 #ifdef __cplusplus

@@ -14,6 +14,7 @@ layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
+layout(location = 4) out vec3 out_uv_layer;
 
 float hash(uint x) {
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
@@ -30,8 +31,9 @@ void main() {
   out_world = world;
   out_normal = rotate_yaw(rotate_quat(leaf.rotation, in_normal), inst.yaw_cos_sin);
   vec4 tint = unpack_tint(inst.tint);
-  float v = 0.75 + 0.5 * hash(uint(gl_InstanceIndex));
-  out_albedo = m.leaf_color.rgb * tint.rgb * tint.a * v * (0.9 + 0.2 * in_uv.y);
+  float v = 0.85 + 0.3 * hash(uint(gl_InstanceIndex));
+  out_albedo = m.leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
+  out_uv_layer = vec3(in_uv, float(m.leaf_texture_layer));
   // Leaves deep inside the crown see less sky: a cheap occlusion term from the crown sphere.
   float depth = length(local - m.bounding_sphere.xyz) / max(m.bounding_sphere.w, 1e-3);
   out_ao_translucency = vec2(mix(0.35, 1.0, clamp(depth * 1.3 - 0.2, 0.0, 1.0)), 0.45);

@@ -1,8 +1,10 @@
 #include "engine/render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
+#include "engine/render/leaf_textures.h"
 #include "engine/vk/pipelines.h"
 
 namespace forest {
@@ -44,10 +46,19 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
     m.bounding_sphere = tm.bounding_sphere;
     m.bark_color = glm::vec4(tm.bark_color, 1.0f);
     m.leaf_color = glm::vec4(tm.leaf_color, 1.0f);
-    auto [bf, bv] = append(vertices, indices, tm.branches);
-    m.branch_first_index = bf;
-    m.branch_index_count = uint32_t(tm.branches.indices.size());
-    m.branch_vertex_offset = bv;
+    // Branch LOD chain: LOD0 then the simplified levels, at most MAX_BRANCH_LODS.
+    std::vector<std::pair<const Mesh*, float>> lods{{&tm.branches, 0.0f}};
+    for (const MeshLod& l : tm.branch_lods)
+      if (lods.size() < MAX_BRANCH_LODS && !l.mesh.indices.empty()) lods.push_back({&l.mesh, std::max(l.error, lods.back().second)});
+    m.lod_count = uint32_t(lods.size());
+    for (uint32_t k = 0; k < m.lod_count; ++k) {
+      auto [first, offset] = append(vertices, indices, *lods[k].first);
+      m.lod_first_index[k] = first;
+      m.lod_index_count[k] = uint32_t(lods[k].first->indices.size());
+      m.lod_vertex_offset[k] = offset;
+      m.lod_error[k] = lods[k].second;
+    }
+    m.leaf_texture_layer = uint32_t(models.size());
     auto [cf, cv] = append(vertices, indices, tm.leaf_card);
     m.card_first_index = cf;
     m.card_index_count = uint32_t(tm.leaf_card.indices.size());
@@ -55,10 +66,23 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
     m.leaf_offset = uint32_t(leaves.size());
     m.leaf_count = tm.leaf_card.indices.empty() ? 0 : uint32_t(tm.leaves.size());
     for (const LeafPlacement& l : tm.leaves)
-      leaves.push_back({glm::vec4(l.position, l.scale), glm::vec4(l.rotation.x, l.rotation.y, l.rotation.z, l.rotation.w)});
+      leaves.push_back({glm::vec4(l.position, l.scale), glm::vec4(l.rotation.x, l.rotation.y, l.rotation.z, l.rotation.w),
+                        glm::vec4(l.color, 1.0f)});
     models.push_back(m);
   }
   instance_count_ = uint32_t(scene.instances.size());
+
+  std::vector<const Image8*> textures;
+  for (const TreeModel& tm : scene.models) textures.push_back(&tm.leaf_texture);
+  TextureArrayData tex = build_leaf_texture_array(textures, LEAF_TEXTURE_SIZE);
+  leaf_textures_ = vk::create_texture_array(ctx, tex.size, tex.layers, tex.mips, VK_FORMAT_R8G8B8A8_SRGB, tex.texels);
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = VK_LOD_CLAMP_NONE;
+  VK_CHECK(vkCreateSampler(ctx.device, &sci, nullptr, &sampler_));
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   vertices_ = vk::create_buffer_from<Vertex>(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices);
@@ -94,15 +118,17 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
       {BINDING_LEAVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {BINDING_COMMANDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {BINDING_DRAW_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {BINDING_LEAF_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   slci.bindingCount = uint32_t(std::size(bindings));
   slci.pBindings = bindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &set_layout_));
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5}};
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
-  dpci.poolSizeCount = 2;
+  dpci.poolSizeCount = 3;
   dpci.pPoolSizes = sizes;
   VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &pool_));
   VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -112,7 +138,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, &set_));
   const vk::Buffer* buffers[] = {&frame_, &instances_, &models_, &leaves_, &commands_, &counts_};
   VkDescriptorBufferInfo infos[6];
-  VkWriteDescriptorSet writes[6];
+  VkWriteDescriptorSet writes[7];
   for (uint32_t i = 0; i < 6; ++i) {
     infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -122,7 +148,14 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
     writes[i].descriptorType = bindings[i].descriptorType;
     writes[i].pBufferInfo = &infos[i];
   }
-  vkUpdateDescriptorSets(ctx.device, 6, writes, 0, nullptr);
+  VkDescriptorImageInfo image_info{sampler_, leaf_textures_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  writes[6] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  writes[6].dstSet = set_;
+  writes[6].dstBinding = BINDING_LEAF_TEXTURES;
+  writes[6].descriptorCount = 1;
+  writes[6].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  writes[6].pImageInfo = &image_info;
+  vkUpdateDescriptorSets(ctx.device, 7, writes, 0, nullptr);
 
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   plci.setLayoutCount = 1;
@@ -168,6 +201,8 @@ void Renderer::create_pipelines() {
   vk::GraphicsPipelineDesc leaves = branches;
   leaves.vertex = "leaf_vert";
   leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
+  leaves.alpha_to_coverage = samples_ > VK_SAMPLE_COUNT_1_BIT;
+  leaves.fragment_constants = {1u, leaves.alpha_to_coverage ? 1u : 0u};  // LEAF, ALPHA_TO_COVERAGE
   leaves_pipeline_ = vk::create_graphics_pipeline(ctx_, layout_, leaves);
 }
 
@@ -186,6 +221,8 @@ Renderer::~Renderer() {
     vk::destroy_buffer(ctx_, *b);
   vk::destroy_image(ctx_, color_);
   vk::destroy_image(ctx_, color_msaa_);
+  vk::destroy_image(ctx_, leaf_textures_);
+  vkDestroySampler(dev, sampler_, nullptr);
   vk::destroy_image(ctx_, depth_);
 }
 
@@ -312,6 +349,8 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
   fd.sky_horizon = glm::vec4(sky.horizon, 1.0f);
   fd.fog = glm::vec4(sky.horizon, sky.fog_density);
   for (size_t i = 0; i < 6; ++i) fd.frustum[i] = cm.frustum[i];
+  float pixels_per_meter = float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
+  fd.lod = glm::vec4(pixels_per_meter, scene_.desc.lod_error_pixels, 0.0f, 0.0f);
   fd.instance_count = instance_count_;
   fd.leaf_command_base = instance_count_;
   std::memcpy(frame_.mapped, &fd, sizeof(fd));
@@ -334,6 +373,8 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
   stats.branch_draws = counts.branch_draws;
   stats.leaf_draws = counts.leaf_draws;
   stats.leaves_drawn = counts.leaves_drawn;
+  stats.branch_triangles = counts.branch_triangles;
+  for (int k = 0; k < MAX_BRANCH_LODS; ++k) stats.lod_draws[k] = counts.lod_draws[k];
   uint64_t ts[kTimestampCount] = {};
   VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, 0, kTimestampCount, sizeof(ts), ts, sizeof(uint64_t),
                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));

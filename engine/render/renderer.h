@@ -22,6 +22,8 @@ struct FrameStats {
   uint32_t branch_draws = 0;   // visible trees
   uint32_t leaf_draws = 0;
   uint32_t leaves_drawn = 0;
+  uint32_t branch_triangles = 0;
+  uint32_t lod_draws[MAX_BRANCH_LODS] = {};  // visible trees per branch LOD level
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
@@ -50,6 +52,8 @@ class Renderer {
 
   vk::Buffer vertices_, indices_, instances_, models_, leaves_;
   vk::Buffer frame_, commands_, counts_, counts_readback_, image_readback_;
+  vk::Image leaf_textures_;
+  VkSampler sampler_ = VK_NULL_HANDLE;
   vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
   VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
 

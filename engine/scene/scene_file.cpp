@@ -28,11 +28,12 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 }
 
 void read_render(const TomlTable& t, SceneDesc& s) {
-  t.check_keys({"width", "height", "samples"});
+  t.check_keys({"width", "height", "samples", "lod_error_pixels"});
   s.width = uint32_t(t.integer("width", s.width, 16, 8192));
   s.height = uint32_t(t.integer("height", s.height, 16, 8192));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
   if (s.samples & (s.samples - 1)) t.fail("samples", "must be 1, 2, 4 or 8, got " + std::to_string(s.samples));
+  s.lod_error_pixels = float(t.number("lod_error_pixels", s.lod_error_pixels, 0.0, 1000.0));
 }
 
 void read_camera(const TomlTable& t, CameraDesc& c) {

@@ -66,6 +66,7 @@ struct SceneDesc {
   std::filesystem::path file;
   uint32_t width = 1280, height = 720;
   uint32_t samples = 4;  // MSAA samples per pixel: 1, 2, 4 or 8
+  float lod_error_pixels = 1.0f;  // branch LOD: allowed projected error; 0 = always LOD0
   CameraDesc camera;
   SkyDesc sky;
   TerrainDesc terrain;

@@ -20,9 +20,16 @@ VkShaderModule create_shader(Context& ctx, std::string_view name) {
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc) {
   VkShaderModule vs = create_shader(ctx, desc.vertex);
   VkShaderModule fs = create_shader(ctx, desc.fragment);
+  std::vector<VkSpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < desc.fragment_constants.size(); ++i)
+    entries.push_back({i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)});
+  VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
+                                      desc.fragment_constants.size() * sizeof(uint32_t),
+                                      desc.fragment_constants.data()};
   VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main"},
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main"},
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
+       entries.empty() ? nullptr : &specialization},
   };
 
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
@@ -50,6 +57,7 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = desc.samples;
+  multisample.alphaToCoverageEnable = desc.alpha_to_coverage && desc.samples > VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = desc.depth_test;
   depth.depthWriteEnable = desc.depth_write;

@@ -25,6 +25,9 @@ struct GraphicsPipelineDesc {
   VkFormat color_format = VK_FORMAT_UNDEFINED;
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  bool alpha_to_coverage = false;
+  // Fragment-stage specialization constants, constant_id = index (shader variants).
+  std::vector<uint32_t> fragment_constants;
 };
 
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc);

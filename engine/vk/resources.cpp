@@ -1,6 +1,8 @@
 #include "engine/vk/resources.h"
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 namespace forest::vk {
 
@@ -83,6 +85,78 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
   vci.format = format;
   vci.subresourceRange = {aspect, 0, 1, 0, 1};
   VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &img.view));
+  return img;
+}
+
+Image create_texture_array(Context& ctx, uint32_t size, uint32_t layers, uint32_t mips, VkFormat format,
+                           std::span<const uint8_t> texels) {
+  Image img;
+  img.format = format;
+  img.extent = {size, size};
+  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ici.imageType = VK_IMAGE_TYPE_2D;
+  ici.format = format;
+  ici.extent = {size, size, 1};
+  ici.mipLevels = mips;
+  ici.arrayLayers = layers;
+  ici.samples = VK_SAMPLE_COUNT_1_BIT;
+  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ici.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  VK_CHECK(vkCreateImage(ctx.device, &ici, nullptr, &img.image));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device, img.image, &req);
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &img.memory));
+  VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vci.image = img.image;
+  vci.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  vci.format = format;
+  vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mips, 0, layers};
+  VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &img.view));
+
+  Buffer staging = create_buffer(ctx, texels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::upload);
+  std::memcpy(staging.mapped, texels.data(), texels.size());
+  std::vector<VkBufferImageCopy> regions;
+  VkDeviceSize offset = 0;
+  for (uint32_t layer = 0; layer < layers; ++layer)
+    for (uint32_t mip = 0; mip < mips; ++mip) {
+      uint32_t s = std::max(size >> mip, 1u);
+      VkBufferImageCopy r{};
+      r.bufferOffset = offset;
+      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, layer, 1};
+      r.imageExtent = {s, s, 1};
+      regions.push_back(r);
+      offset += VkDeviceSize(s) * s * 4;
+    }
+  if (offset != texels.size()) throw VkFailure("texture array: texel data size does not match its mip chain");
+  submit_now(ctx, [&](VkCommandBuffer cmd) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = img.image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mips, 0, layers};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           uint32_t(regions.size()), regions.data());
+    b.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  });
+  destroy_buffer(ctx, staging);
   return img;
 }
 

@@ -40,6 +40,11 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
                    VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 void destroy_image(Context& ctx, Image& image);
 
+// A sampled 2D array texture (square, all mips), filled from `texels`: layer-major, each
+// layer its mip chain from level 0, tightly packed RGBA8.
+Image create_texture_array(Context& ctx, uint32_t size, uint32_t layers, uint32_t mips, VkFormat format,
+                           std::span<const uint8_t> texels);
+
 // One synchronization2 image barrier (whole image, one mip, one layer).
 void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                    VkImageLayout from, VkImageLayout to,

@@ -1,0 +1,24 @@
+// CPU preparation of the leaf texture array: every model's leaf texture resampled to one
+// square size with its full mip chain (coverage-preserving box filter), layer-major.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "generators/tree/tree_model.h"
+
+namespace forest {
+
+struct TextureArrayData {
+  uint32_t size = 0, layers = 0, mips = 0;
+  std::vector<uint8_t> texels;  // layer-major, each layer mips 0..mips-1, RGBA8
+};
+
+// An empty Image8 becomes an opaque white layer (untextured leaf cards stay solid).
+TextureArrayData build_leaf_texture_array(const std::vector<const Image8*>& images, uint32_t size);
+
+// Bilinear resample of an RGBA8 image to size x size.
+Image8 resample(const Image8& image, uint32_t size);
+// Next mip level (half size, 2x2 box filter).
+Image8 downsample(const Image8& image);
+
+}  // namespace forest
