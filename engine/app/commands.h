@@ -25,6 +25,15 @@ struct MakeInputsArgs {
 };
 int run_make_inputs(const MakeInputsArgs& args);
 
+struct PreviewArgs {
+  std::string model;
+  std::string out;
+  std::string device;
+  uint32_t size = 384;
+  uint32_t views = 4;
+};
+int run_preview(const PreviewArgs& args);
+
 struct RenderArgs {
   std::string scene;
   std::string out;

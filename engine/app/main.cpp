@@ -31,6 +31,14 @@ int main(int argc, char** argv) {
   auto* inputs_cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
   inputs_cmd->add_option("--out", inputs.out, "Output folder (one subfolder per method)")->required();
 
+  app::PreviewArgs preview;
+  auto* preview_cmd = cli.add_subcommand("preview", "Render a turntable contact sheet of a .glb model");
+  preview_cmd->add_option("model", preview.model, "Model (.glb)")->required();
+  preview_cmd->add_option("--out", preview.out, "Output image (.png)")->required();
+  preview_cmd->add_option("--size", preview.size, "Pixels per view")->check(CLI::Range(32, 4096));
+  preview_cmd->add_option("--views", preview.views, "Number of views around the model")->check(CLI::Range(1, 64));
+  preview_cmd->add_option("--device", preview.device, "Device index or name substring");
+
   app::RenderArgs render;
   uint32_t width = 0, height = 0;
   auto* render_cmd = cli.add_subcommand("render", "Render a scene headless to an image");
@@ -67,6 +75,7 @@ int main(int argc, char** argv) {
       return app::run_generate(gen);
     }
     if (*inputs_cmd) return app::run_make_inputs(inputs);
+    if (*preview_cmd) return app::run_preview(preview);
     if (*render_cmd) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;

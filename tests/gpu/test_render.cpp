@@ -4,7 +4,11 @@
 
 #include <cmath>
 
+#include <cstring>
+
+#include "engine/render/contact_sheet.h"
 #include "engine/render/renderer.h"
+#include "generators/methods/methods.h"
 #include "engine/scene/scene.h"
 
 using namespace forest;
@@ -197,4 +201,107 @@ TEST_F(GpuTest, MultisamplingResolvesEdgesOnly) {
   // Interior sky is the same with and without multisampling.
   for (uint32_t x = 0; x < 160; x += 4)
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.image.pixel(x, 3)[c], b.image.pixel(x, 3)[c], 1);
+}
+
+namespace {
+// A scene holding one model, built directly (no species file): for engine-only properties.
+Scene single_model_scene(TreeModel model, std::vector<TreeDesc> trees, float lod_error_pixels = 1.0f) {
+  Scene s;
+  s.desc = parse_scene_text(tiny_scene(""), "test.toml", kSource + "/scenes");
+  s.desc.species.clear();
+  s.desc.trees = std::move(trees);
+  s.desc.lod_error_pixels = lod_error_pixels;
+  s.terrain = make_terrain(s.desc.terrain);
+  s.models.push_back(std::move(model));
+  s.instances = place_trees(s.desc, s.terrain);
+  return s;
+}
+
+TreeModel broadleaf() {
+  return generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11});
+}
+}  // namespace
+
+TEST_F(GpuTest, BranchLodChosenByProjectedError) {
+  TreeModel m = broadleaf();
+  m.branch_lods.clear();
+  // Three fake coarser levels (copies) with growing errors: the choice depends only on them.
+  for (float e : {0.2f, 0.5f, 2.0f}) m.branch_lods.push_back({m.branches, e});
+  std::vector<TreeDesc> trees = {{0, 0.0f, 0.0f, 1.0f, 0.0f}, {0, 0.0f, 60.0f, 1.0f, 0.0f}, {0, 0.0f, 95.0f, 1.0f, 0.0f}};
+  Scene s = single_model_scene(m, trees);
+  s.desc.terrain.size = 400;
+  s.terrain = make_terrain(s.desc.terrain);
+  Renderer r(ctx_, s, 160, 120, 1);
+  FrameStats stats = r.render(s.desc.camera, nullptr);
+  ASSERT_EQ(stats.branch_draws, 3u);
+  // Expected level per tree from the same rule on the CPU.
+  float ppm = 120.0f / (2.0f * std::tan(glm::radians(s.desc.camera.fov_deg) * 0.5f));
+  uint32_t expected[MAX_BRANCH_LODS] = {};
+  for (const gpu::Instance& inst : s.instances) {
+    glm::vec3 c = glm::vec3(inst.position_scale) + glm::vec3(m.bounding_sphere);
+    float dist = std::max(glm::distance(c, s.desc.camera.position) - m.bounding_sphere.w, 1e-3f);
+    uint32_t lod = 0;
+    for (uint32_t k = 1; k < 4; ++k)
+      if (m.branch_lods[k - 1].error * ppm / dist <= 1.0f) lod = k;
+    expected[lod]++;
+  }
+  for (int k = 0; k < MAX_BRANCH_LODS; ++k) EXPECT_EQ(stats.lod_draws[k], expected[k]) << "LOD " << k;
+  EXPECT_GT(stats.lod_draws[0], 0u);
+  EXPECT_LT(stats.lod_draws[0], 3u) << "far trees should use coarser levels";
+
+  Scene full = single_model_scene(m, trees, 0.0f);  // 0 px allowed: always LOD0
+  Renderer r0(ctx_, full, 160, 120, 1);
+  EXPECT_EQ(r0.render(full.desc.camera, nullptr).lod_draws[0], 3u);
+}
+
+TEST_F(GpuTest, TransparentLeafTextureHidesLeaves) {
+  TreeModel textured = broadleaf(), leafless = broadleaf();
+  textured.leaf_texture.width = textured.leaf_texture.height = 8;
+  textured.leaf_texture.rgba.assign(8 * 8 * 4, 0);  // alpha 0 everywhere
+  leafless.leaves.clear();
+  std::vector<TreeDesc> tree = {{0, 0.0f, 0.0f, 1.0f, 0.0f}};
+  for (uint32_t samples : {1u, 4u}) {
+    Scene a = single_model_scene(textured, tree), b = single_model_scene(leafless, tree);
+    Renderer ra(ctx_, a, 160, 120, samples), rb(ctx_, b, 160, 120, samples);
+    FrameImage ia, ib;
+    ra.render(a.desc.camera, &ia);
+    rb.render(b.desc.camera, &ib);
+    EXPECT_EQ(count_differences(ia, ib, 0, 0, -1, -1, false), 0u) << samples << " samples";
+  }
+  // And an opaque texture shows them.
+  TreeModel opaque = broadleaf();
+  opaque.leaf_texture.width = opaque.leaf_texture.height = 8;
+  opaque.leaf_texture.rgba.assign(8 * 8 * 4, 255);
+  Scene a = single_model_scene(opaque, tree), b = single_model_scene(leafless, tree);
+  Renderer ra(ctx_, a, 160, 120, 1), rb(ctx_, b, 160, 120, 1);
+  FrameImage ia, ib;
+  ra.render(a.desc.camera, &ia);
+  rb.render(b.desc.camera, &ib);
+  EXPECT_GT(count_differences(ia, ib, 0, 0, -1, -1, false), 100u);
+}
+
+TEST_F(GpuTest, TurntableFramesTheModel) {
+  TurntableOptions t;
+  t.size = 96;
+  t.views = 4;
+  t.samples = 1;
+  std::vector<FrameImage> views = render_turntable(ctx_, broadleaf(), t);
+  ASSERT_EQ(views.size(), 4u);
+  for (const FrameImage& v : views) {
+    // The model fills the middle (a third of the central box is not sky), and the top row is
+    // all sky: nothing is cut off at the top.
+    size_t solid = 0;
+    for (uint32_t y = 32; y < 64; ++y)
+      for (uint32_t x = 32; x < 64; ++x) solid += !is_sky(v.pixel(x, y));
+    EXPECT_GT(solid, 32u * 32u / 3u);
+    size_t sky_top = 0;
+    for (uint32_t x = 0; x < 96; ++x) sky_top += is_sky(v.pixel(x, 1));
+    EXPECT_EQ(sky_top, 96u) << "the crown touches the top edge";
+  }
+  EXPECT_NE(views[0].rgba, views[1].rgba);  // different azimuths
+  FrameImage sheet = compose_grid(views, 2, 4);
+  EXPECT_EQ(sheet.width, 2u * 96u + 3u * 4u);
+  EXPECT_EQ(sheet.height, 2u * 96u + 3u * 4u);
+  EXPECT_EQ(0, std::memcmp(sheet.pixel(4, 4), views[0].pixel(0, 0), 4));
+  EXPECT_EQ(0, std::memcmp(sheet.pixel(4 + 96 + 4, 4 + 96 + 4), views[3].pixel(0, 0), 4));
 }

@@ -1,0 +1,68 @@
+#include "engine/render/contact_sheet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/constants.hpp>
+
+namespace forest {
+
+std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& model, const TurntableOptions& options) {
+  glm::vec4 sphere = model.bounding_sphere;
+  float radius = std::max(sphere.w, 1e-3f);
+  Scene scene;
+  scene.desc.width = scene.desc.height = options.size;
+  scene.desc.samples = options.samples;
+  scene.desc.lod_error_pixels = 0.0f;  // a preview shows full detail
+  scene.desc.sky.fog_density = 0.0f;
+  scene.desc.terrain.size = std::max(radius * 8.0f, 10.0f);
+  scene.desc.terrain.resolution = 4;
+  scene.desc.terrain.height = 0.0f;
+  scene.desc.trees.push_back(TreeDesc{});
+  scene.terrain = make_terrain(scene.desc.terrain);
+  scene.models.push_back(model);
+  scene.instances = place_trees(scene.desc, scene.terrain);
+
+  Renderer renderer(ctx, scene, options.size, options.size, options.samples);
+  std::vector<FrameImage> frames;
+  float distance = radius / std::sin(glm::radians(options.fov_deg) * 0.5f) * 1.05f;
+  float elevation = glm::radians(options.elevation_deg);
+  for (uint32_t v = 0; v < options.views; ++v) {
+    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(options.views);
+    CameraDesc cam;
+    cam.target = glm::vec3(sphere);
+    cam.position = cam.target + distance * glm::vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                                                     -std::cos(azimuth) * std::cos(elevation));
+    cam.fov_deg = options.fov_deg;
+    cam.near = std::max(distance * 1e-3f, 1e-3f);
+    cam.far = distance * 4.0f;
+    FrameImage image;
+    renderer.render(cam, &image);
+    frames.push_back(std::move(image));
+  }
+  return frames;
+}
+
+FrameImage compose_grid(const std::vector<FrameImage>& frames, uint32_t columns, uint32_t gap) {
+  FrameImage sheet;
+  if (frames.empty()) return sheet;
+  columns = std::max(1u, std::min(columns, uint32_t(frames.size())));
+  uint32_t rows = uint32_t((frames.size() + columns - 1) / columns);
+  uint32_t w = frames[0].width, h = frames[0].height;
+  sheet.width = columns * w + (columns + 1) * gap;
+  sheet.height = rows * h + (rows + 1) * gap;
+  sheet.rgba.assign(size_t(sheet.width) * sheet.height * 4, 0);
+  for (size_t i = 0; i < sheet.rgba.size(); i += 4) {  // neutral grey background
+    sheet.rgba[i] = sheet.rgba[i + 1] = sheet.rgba[i + 2] = 40;
+    sheet.rgba[i + 3] = 255;
+  }
+  for (size_t i = 0; i < frames.size(); ++i) {
+    uint32_t x0 = gap + uint32_t(i % columns) * (w + gap), y0 = gap + uint32_t(i / columns) * (h + gap);
+    for (uint32_t y = 0; y < h; ++y)
+      std::memcpy(&sheet.rgba[(size_t(y0 + y) * sheet.width + x0) * 4], frames[i].pixel(0, y), size_t(w) * 4);
+  }
+  return sheet;
+}
+
+}  // namespace forest

@@ -1,0 +1,25 @@
+// Turntable views of one model on a neutral ground, and grids of frames (contact sheets):
+// `forest preview`, `forest gallery`, and tests that need to see a model.
+#pragma once
+#include <vector>
+
+#include "engine/render/renderer.h"
+
+namespace forest {
+
+struct TurntableOptions {
+  uint32_t size = 384;        // pixels per view (square)
+  uint32_t views = 4;         // evenly spaced azimuths
+  float elevation_deg = 12.0f;
+  float fov_deg = 30.0f;
+  uint32_t samples = 4;
+};
+
+// One frame per view, the camera framing the model's bounding sphere.
+std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& model, const TurntableOptions& options);
+
+// Frames (all the same size) laid out left to right, top to bottom, `columns` wide, with a
+// `gap` of background color between them.
+FrameImage compose_grid(const std::vector<FrameImage>& frames, uint32_t columns, uint32_t gap = 4);
+
+}  // namespace forest
