@@ -16,7 +16,8 @@ layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 
 void main() {
-  Instance inst = instances[commands[gl_DrawIDARB].instance];
+  DrawCommand d = commands[gl_DrawIDARB];
+  Instance inst = instances[d.instance];
   Model m = models[inst.model];
   vec3 world = rotate_yaw(in_position, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
   out_world = world;
@@ -26,5 +27,6 @@ void main() {
   out_albedo = m.bark_color.rgb * stripes * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
   out_uv_layer = vec3(in_uv, 0.0);
+  if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.lambda) * 0.6;
   gl_Position = frame.view_proj * vec4(world, 1.0);
 }

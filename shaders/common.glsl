@@ -1,10 +1,18 @@
 // Bindings and shading shared by every forest shader.
 #include "gpu_types.h"
+#include "prune_math.h"
 
 layout(set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = BINDING_INSTANCES, std430) readonly buffer Instances { Instance instances[]; };
 layout(set = 0, binding = BINDING_MODELS, std430) readonly buffer Models { Model models[]; };
 layout(set = 0, binding = BINDING_LEAVES, std430) readonly buffer Leaves { Leaf leaves[]; };
+layout(set = 0, binding = BINDING_PRUNE_TABLES, std430) readonly buffer PruneTables { float prune_tables[]; };
+
+// Blue (λ small) -> green -> red (λ = 1), the geometry-level view of Fig 7.15.
+vec3 lambda_color(float lambda) {
+  return lambda < 0.5 ? mix(vec3(0.05, 0.15, 0.9), vec3(0.1, 0.8, 0.1), lambda * 2.0)
+                      : mix(vec3(0.1, 0.8, 0.1), vec3(0.95, 0.1, 0.05), lambda * 2.0 - 1.0);
+}
 
 vec3 rotate_yaw(vec3 p, vec2 cs) { return vec3(cs.x * p.x + cs.y * p.z, p.y, -cs.y * p.x + cs.x * p.z); }
 

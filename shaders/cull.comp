@@ -27,14 +27,35 @@ void main() {
   for (uint k = 1; k < m.lod_count; ++k)
     if (m.lod_error[k] * s * frame.lod.x / dist <= frame.lod.y) lod = k;
 
+  // Detail level λ and leaf area scale s from the normalized distance d.
+  float d = clamp(distance(center, frame.camera_pos.xyz) / frame.prune.x, 0.0, 1.0);
+  float lambda = 1.0, area_scale = 1.0;
+  if (frame.prune_mode == PRUNE_COOK) {
+    lambda = lambda_cook(d);
+    area_scale = 1.0 / max(lambda, 1e-3);
+  } else if (frame.prune_mode == PRUNE_OPT && m.has_tables != 0) {
+    float pos = d_table_position(d);
+    uint at = m.table_offset + S_SAMPLES + uint(pos);
+    lambda = mix(prune_tables[at], prune_tables[min(at + 1, m.table_offset + TABLE_FLOATS - 1)], fract(pos));
+    float spos = clamp(lambda, 0.0, 1.0) * float(S_SAMPLES - 1);
+    uint sat = m.table_offset + uint(spos);
+    area_scale = mix(prune_tables[sat], prune_tables[min(sat + 1, m.table_offset + S_SAMPLES - 1)], fract(spos));
+  } else if (frame.prune_mode == PRUNE_FIXED) {
+    lambda = frame.prune.z;
+    area_scale = frame.prune.w;
+  }
+  uint k = leaf_prefix(lambda, m.leaf_count);
+
   uint b = atomicAdd(counts.branch_draws, 1);
   atomicAdd(counts.lod_draws[lod], 1);
   atomicAdd(counts.branch_triangles, m.lod_index_count[lod] / 3);
-  commands[b] = DrawCommand(m.lod_index_count[lod], 1, m.lod_first_index[lod], m.lod_vertex_offset[lod], 0, i);
-  if (m.leaf_count > 0) {
+  atomicAdd(counts.lambda_sum, uint(clamp(lambda, 0.0, 1.0) * 4096.0 + 0.5));
+  commands[b] = DrawCommand(m.lod_index_count[lod], 1, m.lod_first_index[lod], m.lod_vertex_offset[lod], 0, i,
+                            lambda, area_scale);
+  if (k > 0) {
     uint l = atomicAdd(counts.leaf_draws, 1);
-    atomicAdd(counts.leaves_drawn, m.leaf_count);
+    atomicAdd(counts.leaves_drawn, k);
     commands[frame.leaf_command_base + l] =
-        DrawCommand(m.card_index_count, m.leaf_count, m.card_first_index, m.card_vertex_offset, m.leaf_offset, i);
+        DrawCommand(m.card_index_count, k, m.card_first_index, m.card_vertex_offset, m.leaf_offset, i, lambda, area_scale);
   }
 }

@@ -26,6 +26,23 @@ using mat4 = glm::mat4;
 #define BINDING_COMMANDS 4
 #define BINDING_DRAW_COUNTS 5
 #define BINDING_LEAF_TEXTURES 6
+#define BINDING_PRUNE_TABLES 7
+
+// FrameData.prune_mode: how many leaves of each tree are drawn (seed 000 ch7).
+#define PRUNE_FULL 0   // every leaf, λ = 1
+#define PRUNE_COOK 1   // λ = (1 − d)², area scale s = 1/λ (Cook et al. 2007 as in ch7)
+#define PRUNE_OPT 2    // λ_opt(d) and s_opt(λ) from the model's baked PR tables
+#define PRUNE_FIXED 3  // one λ and s for every tree (bake measurements, tests)
+
+// FrameData.view_flags
+#define VIEW_LAMBDA 1  // color trees by their detail level λ (Fig 7.15)
+#define VIEW_MASK 2    // write coverage only (white): PR measurement
+
+// Per-model PR tables (floats in the prune table buffer, at Model.table_offset):
+// s_opt at λ = i / (S_SAMPLES − 1), then λ_opt at the D_SAMPLES distances of d_sample().
+#define S_SAMPLES 21
+#define D_SAMPLES 20
+#define TABLE_FLOATS (S_SAMPLES + D_SAMPLES)
 
 #define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
 #define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
@@ -43,10 +60,11 @@ GPU_STRUCT FrameData {
   vec4 fog;             // rgb linear, w = density per meter
   vec4 frustum[6];      // planes, xyz = inward normal, w = distance; dot(n,p)+w >= 0 inside
   vec4 lod;             // x = pixels per meter at distance 1, y = allowed error in pixels (0: LOD0 only)
+  vec4 prune;           // x = distance where d reaches 1 (m), y = transition band t, z = fixed λ, w = fixed s
   uint instance_count;
   uint leaf_command_base;  // index of the first leaf command in the command buffer
-  uint pad0;
-  uint pad1;
+  uint prune_mode;         // PRUNE_*
+  uint view_flags;         // VIEW_*
 };
 
 // One tree instance in the scene: placed once at load, never touched per frame by the CPU.
@@ -74,8 +92,8 @@ GPU_STRUCT Model {
   int card_vertex_offset;
   uint leaf_offset;          // first leaf of this model in leaves[]
   uint leaf_count;
-  uint pad0;
-  uint pad1;
+  uint table_offset;         // first float of this model's PR tables in the prune table buffer
+  uint has_tables;           // 0: not baked; mode opt then draws it at full detail
 };
 
 // One leaf: an instance of the model's leaf card (glTF EXT_mesh_gpu_instancing TRS).
@@ -93,6 +111,8 @@ struct DrawCommand {
   int vertex_offset;
   uint first_instance;
   uint instance;
+  float lambda;      // detail level of this tree (leaf draws)
+  float area_scale;  // s: leaf area scale compensating the dropped leaves
 };
 
 // Counters written by cull.comp, read by vkCmdDrawIndexedIndirectCount.
@@ -102,6 +122,7 @@ struct DrawCounts {
   uint leaves_drawn;
   uint branch_triangles;
   uint lod_draws[MAX_BRANCH_LODS];  // branch draws per LOD level
+  uint lambda_sum;                  // Σ λ over visible trees, in 1/65536 (mean λ)
 };
 
 #ifdef __cplusplus

@@ -26,7 +26,12 @@ void main() {
   Instance inst = instances[d.instance];
   Model m = models[inst.model];
   Leaf leaf = leaves[gl_InstanceIndex];
-  vec3 local = rotate_quat(leaf.rotation, in_position * leaf.position_scale.w) + leaf.position_scale.xyz;
+  // Pruning: survivors grow by sqrt(s) (s scales area); the last leaves of the prefix are in
+  // the transition band and shrink toward its end.
+  float prefix_index = float(gl_InstanceIndex - d.first_instance);
+  float size = leaf.position_scale.w * sqrt(d.area_scale) *
+               transition_size(prefix_index, d.lambda * float(m.leaf_count), frame.prune.y);
+  vec3 local = rotate_quat(leaf.rotation, in_position * size) + leaf.position_scale.xyz;
   vec3 world = rotate_yaw(local, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
   out_world = world;
   out_normal = rotate_yaw(rotate_quat(leaf.rotation, in_normal), inst.yaw_cos_sin);
@@ -34,6 +39,7 @@ void main() {
   float v = 0.85 + 0.3 * hash(uint(gl_InstanceIndex));
   out_albedo = m.leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
   out_uv_layer = vec3(in_uv, float(m.leaf_texture_layer));
+  if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.lambda);
   // Leaves deep inside the crown see less sky: a cheap occlusion term from the crown sphere.
   float depth = length(local - m.bounding_sphere.xyz) / max(m.bounding_sphere.w, 1e-3);
   out_ao_translucency = vec2(mix(0.35, 1.0, clamp(depth * 1.3 - 0.2, 0.0, 1.0)), 0.45);

@@ -28,6 +28,10 @@ void main() {
     if (ALPHA_TO_COVERAGE && alpha <= 0.0) discard;
     albedo *= texel.rgb;
   }
+  if ((frame.view_flags & VIEW_MASK) != 0) {  // coverage for PR measurement
+    out_color = vec4(1.0, 1.0, 1.0, clamp(alpha, 0.0, 1.0));
+    return;
+  }
   vec3 n = normalize(in_normal);
   if (!gl_FrontFacing) n = -n;
   out_color = vec4(shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y), clamp(alpha, 0.0, 1.0));

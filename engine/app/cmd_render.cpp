@@ -52,8 +52,9 @@ int run_render(const RenderArgs& args) {
                     ms(t0, t_scene), ms(t_scene, t_render), ms(t_render, t_done), stats.cull_ms, stats.draw_ms,
                     stats.frame_ms);
       if (args.stats)
-        std::printf("branches: %u triangles drawn; trees per LOD: %u %u %u %u\n", stats.branch_triangles,
-                    stats.lod_draws[0], stats.lod_draws[1], stats.lod_draws[2], stats.lod_draws[3]);
+        std::printf("branches: %u triangles drawn; trees per LOD: %u %u %u %u; mean lambda %.3f\n",
+                    stats.branch_triangles, stats.lod_draws[0], stats.lod_draws[1], stats.lod_draws[2],
+                    stats.lod_draws[3], stats.mean_lambda);
     }
   } catch (...) {
     vk::destroy_context(ctx);

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "engine/render/leaf_textures.h"
+#include "generators/bake/pr_tables.h"
 #include "engine/vk/pipelines.h"
 
 namespace forest {
@@ -41,6 +42,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
 
   std::vector<gpu::Model> models;
   std::vector<gpu::Leaf> leaves;
+  std::vector<float> tables;
   for (const TreeModel& tm : scene.models) {
     gpu::Model m{};
     m.bounding_sphere = tm.bounding_sphere;
@@ -59,6 +61,12 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
       m.lod_error[k] = lods[k].second;
     }
     m.leaf_texture_layer = uint32_t(models.size());
+    if (auto t = read_pr_tables(tm.meta, tm.meta.value("species", "model"))) {
+      m.has_tables = 1;
+      m.table_offset = uint32_t(tables.size());
+      tables.insert(tables.end(), t->s_opt.begin(), t->s_opt.end());
+      tables.insert(tables.end(), t->lambda_opt.begin(), t->lambda_opt.end());
+    }
     auto [cf, cv] = append(vertices, indices, tm.leaf_card);
     m.card_first_index = cf;
     m.card_index_count = uint32_t(tm.leaf_card.indices.size());
@@ -90,6 +98,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   instances_ = vk::create_buffer_from<gpu::Instance>(ctx, storage, scene.instances);
   models_ = vk::create_buffer_from<gpu::Model>(ctx, storage, models);
   leaves_ = vk::create_buffer_from<gpu::Leaf>(ctx, storage, leaves);
+  prune_tables_ = vk::create_buffer_from<float>(ctx, storage, tables);
   frame_ = vk::create_buffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::upload);
   // Room for one branch and one leaf command per instance.
   commands_ = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * 2 * std::max(instance_count_, 1u),
@@ -119,12 +128,13 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
       {BINDING_COMMANDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {BINDING_DRAW_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {BINDING_LEAF_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {BINDING_PRUNE_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   slci.bindingCount = uint32_t(std::size(bindings));
   slci.pBindings = bindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &set_layout_));
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
@@ -138,7 +148,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, &set_));
   const vk::Buffer* buffers[] = {&frame_, &instances_, &models_, &leaves_, &commands_, &counts_};
   VkDescriptorBufferInfo infos[6];
-  VkWriteDescriptorSet writes[7];
+  VkWriteDescriptorSet writes[8];
   for (uint32_t i = 0; i < 6; ++i) {
     infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -155,7 +165,14 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   writes[6].descriptorCount = 1;
   writes[6].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[6].pImageInfo = &image_info;
-  vkUpdateDescriptorSets(ctx.device, 7, writes, 0, nullptr);
+  VkDescriptorBufferInfo tables_info{prune_tables_.buffer, 0, VK_WHOLE_SIZE};
+  writes[7] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  writes[7].dstSet = set_;
+  writes[7].dstBinding = BINDING_PRUNE_TABLES;
+  writes[7].descriptorCount = 1;
+  writes[7].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  writes[7].pBufferInfo = &tables_info;
+  vkUpdateDescriptorSets(ctx.device, 8, writes, 0, nullptr);
 
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   plci.setLayoutCount = 1;
@@ -216,7 +233,7 @@ Renderer::~Renderer() {
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, pool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
-  for (vk::Buffer* b : {&vertices_, &indices_, &instances_, &models_, &leaves_, &frame_, &commands_, &counts_,
+  for (vk::Buffer* b : {&vertices_, &indices_, &instances_, &models_, &leaves_, &prune_tables_, &frame_, &commands_, &counts_,
                         &counts_readback_, &image_readback_})
     vk::destroy_buffer(ctx_, *b);
   vk::destroy_image(ctx_, color_);
@@ -226,7 +243,7 @@ Renderer::~Renderer() {
   vk::destroy_image(ctx_, depth_);
 }
 
-void Renderer::record(VkCommandBuffer cmd, bool readback) {
+void Renderer::record(VkCommandBuffer cmd, bool readback, bool mask) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
@@ -269,7 +286,8 @@ void Renderer::record(VkCommandBuffer cmd, bool readback) {
   VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   color.imageView = color_.view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // the sky covers every pixel
+  color.loadOp = mask ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // else the sky covers all
+  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   if (color_msaa_.image) {  // render multisampled, resolve (average) into the single-sample image
     color.imageView = color_msaa_.view;
@@ -297,14 +315,15 @@ void Renderer::record(VkCommandBuffer cmd, bool readback) {
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_);
-  vkCmdDraw(cmd, 3, 1, 0, 0);
-
   VkDeviceSize zero = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_);
-  vkCmdDrawIndexed(cmd, terrain_index_count_, 1, 0, 0, 0);
+  if (!mask) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_);
+    vkCmdDrawIndexed(cmd, terrain_index_count_, 1, 0, 0, 0);
+  }
 
   if (instance_count_ > 0) {
     const uint32_t stride = sizeof(gpu::DrawCommand);
@@ -337,7 +356,18 @@ void Renderer::record(VkCommandBuffer cmd, bool readback) {
   VK_CHECK(vkEndCommandBuffer(cmd));
 }
 
+FrameSettings scene_frame_settings(const SceneDesc& desc) {
+  FrameSettings s;
+  s.prune_mode = desc.prune_mode;
+  s.lambda_view = desc.lambda_view;
+  return s;
+}
+
 FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
+  return render(camera, image, scene_frame_settings(scene_.desc));
+}
+
+FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image, const FrameSettings& settings) {
   CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
   const SkyDesc& sky = scene_.desc.sky;
   gpu::FrameData fd{};
@@ -351,12 +381,15 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
   for (size_t i = 0; i < 6; ++i) fd.frustum[i] = cm.frustum[i];
   float pixels_per_meter = float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
   fd.lod = glm::vec4(pixels_per_meter, scene_.desc.lod_error_pixels, 0.0f, 0.0f);
+  fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition, settings.fixed_lambda, settings.fixed_scale);
+  fd.prune_mode = settings.prune_mode;
+  fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u);
   fd.instance_count = instance_count_;
   fd.leaf_command_base = instance_count_;
   std::memcpy(frame_.mapped, &fd, sizeof(fd));
 
   VK_CHECK(vkResetCommandBuffer(cmd_, 0));
-  record(cmd_, image != nullptr);
+  record(cmd_, image != nullptr, settings.mask);
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd_;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -375,6 +408,7 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
   stats.leaves_drawn = counts.leaves_drawn;
   stats.branch_triangles = counts.branch_triangles;
   for (int k = 0; k < MAX_BRANCH_LODS; ++k) stats.lod_draws[k] = counts.lod_draws[k];
+  stats.mean_lambda = counts.branch_draws ? double(counts.lambda_sum) / 4096.0 / counts.branch_draws : 0.0;
   uint64_t ts[kTimestampCount] = {};
   VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, 0, kTimestampCount, sizeof(ts), ts, sizeof(uint64_t),
                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));

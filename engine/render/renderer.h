@@ -17,6 +17,16 @@ struct FrameImage {
   const uint8_t* pixel(uint32_t x, uint32_t y) const { return &rgba[(size_t(y) * width + x) * 4]; }
 };
 
+// Per-frame choices that override the scene's [render] settings.
+struct FrameSettings {
+  uint32_t prune_mode = PRUNE_FULL;
+  float fixed_lambda = 1.0f;  // PRUNE_FIXED
+  float fixed_scale = 1.0f;   // PRUNE_FIXED: leaf area scale s
+  bool mask = false;          // coverage only: trees white on black, no sky or terrain
+  bool lambda_view = false;
+};
+FrameSettings scene_frame_settings(const SceneDesc& desc);
+
 struct FrameStats {
   uint32_t instances = 0;
   uint32_t branch_draws = 0;   // visible trees
@@ -24,6 +34,7 @@ struct FrameStats {
   uint32_t leaves_drawn = 0;
   uint32_t branch_triangles = 0;
   uint32_t lod_draws[MAX_BRANCH_LODS] = {};  // visible trees per branch LOD level
+  double mean_lambda = 0.0;                   // over visible trees
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
@@ -39,10 +50,11 @@ class Renderer {
 
   // Renders one frame and waits for it; fills `image` when given.
   FrameStats render(const CameraDesc& camera, FrameImage* image);
+  FrameStats render(const CameraDesc& camera, FrameImage* image, const FrameSettings& settings);
 
  private:
   void create_pipelines();
-  void record(VkCommandBuffer cmd, bool readback);
+  void record(VkCommandBuffer cmd, bool readback, bool mask);
 
   vk::Context& ctx_;
   const Scene& scene_;
@@ -50,7 +62,7 @@ class Renderer {
   uint32_t instance_count_ = 0;
   uint32_t terrain_index_count_ = 0;
 
-  vk::Buffer vertices_, indices_, instances_, models_, leaves_;
+  vk::Buffer vertices_, indices_, instances_, models_, leaves_, prune_tables_;
   vk::Buffer frame_, commands_, counts_, counts_readback_, image_readback_;
   vk::Image leaf_textures_;
   VkSampler sampler_ = VK_NULL_HANDLE;

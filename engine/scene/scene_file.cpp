@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "generators/common/toml_reader.h"
+#include "gpu_types.h"
 
 namespace forest {
 
@@ -28,12 +29,17 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 }
 
 void read_render(const TomlTable& t, SceneDesc& s) {
-  t.check_keys({"width", "height", "samples", "lod_error_pixels"});
+  t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view"});
   s.width = uint32_t(t.integer("width", s.width, 16, 8192));
   s.height = uint32_t(t.integer("height", s.height, 16, 8192));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
   if (s.samples & (s.samples - 1)) t.fail("samples", "must be 1, 2, 4 or 8, got " + std::to_string(s.samples));
   s.lod_error_pixels = float(t.number("lod_error_pixels", s.lod_error_pixels, 0.0, 1000.0));
+  std::string mode = t.choice("mode", "full", {"full", "cook", "opt"});
+  s.prune_mode = mode == "cook" ? PRUNE_COOK : mode == "opt" ? PRUNE_OPT : PRUNE_FULL;
+  s.prune_distance = float(t.number("prune_distance", s.prune_distance, 1e-2, kBig));
+  s.transition = float(t.number("transition", s.transition, 0.0, 1.0));
+  s.lambda_view = t.choice("view", "shaded", {"shaded", "lambda"}) == "lambda";
 }
 
 void read_camera(const TomlTable& t, CameraDesc& c) {
