@@ -27,6 +27,9 @@ using mat4 = glm::mat4;
 #define BINDING_DRAW_COUNTS 5
 #define BINDING_LEAF_TEXTURES 6
 #define BINDING_PRUNE_TABLES 7
+#define BINDING_COVERAGE_REFERENCE 8
+#define BINDING_COVERAGE_TEST 9
+#define BINDING_PR_COUNTS 10
 
 // FrameData.prune_mode: how many leaves of each tree are drawn (seed 000 ch7).
 #define PRUNE_FULL 0   // every leaf, λ = 1
@@ -48,6 +51,7 @@ using mat4 = glm::mat4;
 #define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
 
 #define CULL_GROUP_SIZE 64
+#define PR_GROUP_SIZE 256
 
 // Per-frame constants (uniform buffer).
 GPU_STRUCT FrameData {
@@ -123,6 +127,14 @@ struct DrawCounts {
   uint branch_triangles;
   uint lod_draws[MAX_BRANCH_LODS];  // branch draws per LOD level
   uint lambda_sum;                  // Σ λ over visible trees, in 1/65536 (mean λ)
+};
+
+// Pixel counts of one coverage comparison (pr_count.comp).
+struct PrCounts {
+  uint tp;  // covered in both
+  uint fp;  // covered only by the test (pruned) frame
+  uint fn;  // covered only by the reference (full) frame
+  uint pad;
 };
 
 #ifdef __cplusplus

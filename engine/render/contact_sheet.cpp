@@ -8,12 +8,11 @@
 
 namespace forest {
 
-std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& model, const TurntableOptions& options) {
-  glm::vec4 sphere = model.bounding_sphere;
-  float radius = std::max(sphere.w, 1e-3f);
+Scene make_model_scene(const TreeModel& model, uint32_t size, uint32_t samples) {
+  float radius = std::max(model.bounding_sphere.w, 1e-3f);
   Scene scene;
-  scene.desc.width = scene.desc.height = options.size;
-  scene.desc.samples = options.samples;
+  scene.desc.width = scene.desc.height = size;
+  scene.desc.samples = samples;
   scene.desc.lod_error_pixels = 0.0f;  // a preview shows full detail
   scene.desc.sky.fog_density = 0.0f;
   scene.desc.terrain.size = std::max(radius * 8.0f, 10.0f);
@@ -23,20 +22,28 @@ std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& mode
   scene.terrain = make_terrain(scene.desc.terrain);
   scene.models.push_back(model);
   scene.instances = place_trees(scene.desc, scene.terrain);
+  return scene;
+}
 
+CameraDesc orbit_camera(glm::vec4 sphere, float azimuth, float elevation, float fov_deg) {
+  float distance = std::max(sphere.w, 1e-3f) / std::sin(glm::radians(fov_deg) * 0.5f) * 1.05f;
+  CameraDesc cam;
+  cam.target = glm::vec3(sphere);
+  cam.position = cam.target + distance * glm::vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                                                   -std::cos(azimuth) * std::cos(elevation));
+  cam.fov_deg = fov_deg;
+  cam.near = std::max(distance * 1e-3f, 1e-3f);
+  cam.far = distance * 4.0f;
+  return cam;
+}
+
+std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& model, const TurntableOptions& options) {
+  Scene scene = make_model_scene(model, options.size, options.samples);
   Renderer renderer(ctx, scene, options.size, options.size, options.samples);
   std::vector<FrameImage> frames;
-  float distance = radius / std::sin(glm::radians(options.fov_deg) * 0.5f) * 1.05f;
-  float elevation = glm::radians(options.elevation_deg);
   for (uint32_t v = 0; v < options.views; ++v) {
     float azimuth = 2.0f * glm::pi<float>() * float(v) / float(options.views);
-    CameraDesc cam;
-    cam.target = glm::vec3(sphere);
-    cam.position = cam.target + distance * glm::vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
-                                                     -std::cos(azimuth) * std::cos(elevation));
-    cam.fov_deg = options.fov_deg;
-    cam.near = std::max(distance * 1e-3f, 1e-3f);
-    cam.far = distance * 4.0f;
+    CameraDesc cam = orbit_camera(model.bounding_sphere, azimuth, glm::radians(options.elevation_deg), options.fov_deg);
     FrameImage image;
     renderer.render(cam, &image);
     frames.push_back(std::move(image));

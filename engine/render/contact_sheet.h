@@ -15,6 +15,11 @@ struct TurntableOptions {
   uint32_t samples = 4;
 };
 
+// A scene holding just `model` at the origin on a flat neutral ground, no fog.
+Scene make_model_scene(const TreeModel& model, uint32_t size, uint32_t samples);
+// A camera on a sphere around the model's bounding sphere that frames it.
+CameraDesc orbit_camera(glm::vec4 bounding_sphere, float azimuth_rad, float elevation_rad, float fov_deg);
+
 // One frame per view, the camera framing the model's bounding sphere.
 std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& model, const TurntableOptions& options);
 

@@ -110,6 +110,13 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   counts_readback_ = vk::create_buffer(ctx, sizeof(gpu::DrawCounts), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
   image_readback_ = vk::create_buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                       vk::MemoryUse::readback);
+  const VkDeviceSize frame_bytes = VkDeviceSize(width) * height * 4;
+  coverage_reference_ = vk::create_buffer(ctx, frame_bytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::device);
+  coverage_test_ = vk::create_buffer(ctx, frame_bytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::device);
+  pr_counts_ = vk::create_buffer(ctx, sizeof(gpu::PrCounts),
+                                 storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 vk::MemoryUse::device);
+  pr_readback_ = vk::create_buffer(ctx, sizeof(gpu::PrCounts), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
   color_ = vk::create_image(ctx, {width, height}, kColorFormat,
                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   if (samples_ > VK_SAMPLE_COUNT_1_BIT)
@@ -129,12 +136,15 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
       {BINDING_DRAW_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {BINDING_LEAF_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {BINDING_PRUNE_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {BINDING_COVERAGE_REFERENCE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_COVERAGE_TEST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_PR_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   slci.bindingCount = uint32_t(std::size(bindings));
   slci.pBindings = bindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &set_layout_));
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 9},
                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
@@ -146,10 +156,14 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   dsai.descriptorSetCount = 1;
   dsai.pSetLayouts = &set_layout_;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, &set_));
-  const vk::Buffer* buffers[] = {&frame_, &instances_, &models_, &leaves_, &commands_, &counts_};
-  VkDescriptorBufferInfo infos[6];
-  VkWriteDescriptorSet writes[8];
-  for (uint32_t i = 0; i < 6; ++i) {
+  // Buffer bindings in the order of `bindings`, the image sampler (index 6) written below.
+  const vk::Buffer* buffers[] = {&frame_,       &instances_, &models_, &leaves_, &commands_, &counts_, nullptr,
+                                 &prune_tables_, &coverage_reference_, &coverage_test_, &pr_counts_};
+  const uint32_t binding_count = uint32_t(std::size(bindings));
+  VkDescriptorBufferInfo infos[std::size(buffers)];
+  VkWriteDescriptorSet writes[std::size(buffers)];
+  for (uint32_t i = 0; i < binding_count; ++i) {
+    if (!buffers[i]) continue;
     infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = set_;
@@ -165,18 +179,14 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   writes[6].descriptorCount = 1;
   writes[6].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[6].pImageInfo = &image_info;
-  VkDescriptorBufferInfo tables_info{prune_tables_.buffer, 0, VK_WHOLE_SIZE};
-  writes[7] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  writes[7].dstSet = set_;
-  writes[7].dstBinding = BINDING_PRUNE_TABLES;
-  writes[7].descriptorCount = 1;
-  writes[7].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writes[7].pBufferInfo = &tables_info;
-  vkUpdateDescriptorSets(ctx.device, 8, writes, 0, nullptr);
+  vkUpdateDescriptorSets(ctx.device, binding_count, writes, 0, nullptr);
 
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   plci.setLayoutCount = 1;
   plci.pSetLayouts = &set_layout_;
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
+  plci.pushConstantRangeCount = 1;
+  plci.pPushConstantRanges = &push;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &layout_));
   create_pipelines();
 
@@ -195,6 +205,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
 
 void Renderer::create_pipelines() {
   cull_ = vk::create_compute_pipeline(ctx_, layout_, "cull_comp");
+  pr_count_ = vk::create_compute_pipeline(ctx_, layout_, "pr_count_comp");
   vk::GraphicsPipelineDesc d;
   d.color_format = kColorFormat;
   d.depth_format = kDepthFormat;
@@ -229,12 +240,13 @@ Renderer::~Renderer() {
   vkDestroyFence(dev, fence_, nullptr);
   vkFreeCommandBuffers(dev, ctx_.command_pool, 1, &cmd_);
   vkDestroyQueryPool(dev, timestamps_, nullptr);
-  for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_}) vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_}) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, pool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
   for (vk::Buffer* b : {&vertices_, &indices_, &instances_, &models_, &leaves_, &prune_tables_, &frame_, &commands_, &counts_,
-                        &counts_readback_, &image_readback_})
+                        &counts_readback_, &image_readback_, &coverage_reference_, &coverage_test_, &pr_counts_,
+                        &pr_readback_})
     vk::destroy_buffer(ctx_, *b);
   vk::destroy_image(ctx_, color_);
   vk::destroy_image(ctx_, color_msaa_);
@@ -243,7 +255,7 @@ Renderer::~Renderer() {
   vk::destroy_image(ctx_, depth_);
 }
 
-void Renderer::record(VkCommandBuffer cmd, bool readback, bool mask) {
+void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
@@ -340,7 +352,7 @@ void Renderer::record(VkCommandBuffer cmd, bool readback, bool mask) {
   // ---- readback: statistics always, pixels when asked ----
   VkBufferCopy counts_copy{0, 0, sizeof(gpu::DrawCounts)};
   vkCmdCopyBuffer(cmd, counts_.buffer, counts_readback_.buffer, 1, &counts_copy);
-  if (readback) {
+  if (output != Output::none) {
     vk::image_barrier(cmd, color_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
@@ -348,7 +360,25 @@ void Renderer::record(VkCommandBuffer cmd, bool readback, bool mask) {
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {width_, height_, 1};
-    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image_readback_.buffer, 1, &region);
+    VkBuffer target = output == Output::image       ? image_readback_.buffer
+                      : output == Output::reference ? coverage_reference_.buffer
+                                                    : coverage_test_.buffer;
+    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, 1, &region);
+  }
+  if (output == Output::compare) {
+    vkCmdFillBuffer(cmd, pr_counts_.buffer, 0, sizeof(gpu::PrCounts), 0);
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    uint32_t pixels = width_ * height_;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pr_count_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pixels), &pixels);
+    vkCmdDispatch(cmd, (pixels + PR_GROUP_SIZE - 1) / PR_GROUP_SIZE, 1, 1);
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferCopy copy{0, 0, sizeof(gpu::PrCounts)};
+    vkCmdCopyBuffer(cmd, pr_counts_.buffer, pr_readback_.buffer, 1, &copy);
   }
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
@@ -367,7 +397,38 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image) {
   return render(camera, image, scene_frame_settings(scene_.desc));
 }
 
+double PrResult::quality() const {
+  double p = precision(), r = recall();
+  return 1.0 - std::sqrt((1.0 - p) * (1.0 - p) + (1.0 - r) * (1.0 - r));
+}
+
 FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image, const FrameSettings& settings) {
+  FrameStats stats = submit(camera, settings, image ? Output::image : Output::none);
+  if (image) {
+    image->width = width_;
+    image->height = height_;
+    image->rgba.resize(size_t(width_) * height_ * 4);
+    std::memcpy(image->rgba.data(), image_readback_.mapped, image->rgba.size());
+  }
+  return stats;
+}
+
+void Renderer::render_reference(const CameraDesc& camera, const FrameSettings& reference) {
+  FrameSettings s = reference;
+  s.mask = true;
+  submit(camera, s, Output::reference);
+}
+
+PrResult Renderer::compare_with_reference(const CameraDesc& camera, const FrameSettings& test) {
+  FrameSettings s = test;
+  s.mask = true;
+  submit(camera, s, Output::compare);
+  gpu::PrCounts c;
+  std::memcpy(&c, pr_readback_.mapped, sizeof(c));
+  return {c.tp, c.fp, c.fn};
+}
+
+FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& settings, Output output) {
   CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
   const SkyDesc& sky = scene_.desc.sky;
   gpu::FrameData fd{};
@@ -389,7 +450,7 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image, const F
   std::memcpy(frame_.mapped, &fd, sizeof(fd));
 
   VK_CHECK(vkResetCommandBuffer(cmd_, 0));
-  record(cmd_, image != nullptr, settings.mask);
+  record(cmd_, output, settings.mask);
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd_;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -416,13 +477,6 @@ FrameStats Renderer::render(const CameraDesc& camera, FrameImage* image, const F
   stats.cull_ms = double(ts[1] - ts[0]) * period_ms;
   stats.draw_ms = double(ts[2] - ts[1]) * period_ms;
   stats.frame_ms = double(ts[3] - ts[0]) * period_ms;
-
-  if (image) {
-    image->width = width_;
-    image->height = height_;
-    image->rgba.resize(size_t(width_) * height_ * 4);
-    std::memcpy(image->rgba.data(), image_readback_.mapped, image->rgba.size());
-  }
   return stats;
 }
 

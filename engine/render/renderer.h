@@ -40,6 +40,20 @@ struct FrameStats {
   double frame_ms = 0.0;
 };
 
+// Precision/Recall of a test frame's coverage against a reference (seed 000 §7.2.2).
+struct PrResult {
+  uint64_t tp = 0, fp = 0, fn = 0;
+  // With nothing retrieved, precision is taken as 1 (no false pixel was drawn).
+  double precision() const { return tp + fp ? double(tp) / double(tp + fp) : 1.0; }
+  double recall() const { return tp + fn ? double(tp) / double(tp + fn) : 1.0; }
+  // Q = 1 − √((1 − P)² + (1 − R)²)  (7.7)
+  double quality() const;
+  PrResult& operator+=(const PrResult& o) {
+    tp += o.tp, fp += o.fp, fn += o.fn;
+    return *this;
+  }
+};
+
 class Renderer {
  public:
   // `samples`: MSAA samples per pixel, lowered to what the device supports.
@@ -52,9 +66,16 @@ class Renderer {
   FrameStats render(const CameraDesc& camera, FrameImage* image);
   FrameStats render(const CameraDesc& camera, FrameImage* image, const FrameSettings& settings);
 
+  // Coverage comparisons on the GPU: render the reference coverage once per view, then
+  // compare any number of test settings against it; only three counts come back.
+  void render_reference(const CameraDesc& camera, const FrameSettings& reference);
+  PrResult compare_with_reference(const CameraDesc& camera, const FrameSettings& test);
+
  private:
   void create_pipelines();
-  void record(VkCommandBuffer cmd, bool readback, bool mask);
+  enum class Output { none, image, reference, compare };
+  FrameStats submit(const CameraDesc& camera, const FrameSettings& settings, Output output);
+  void record(VkCommandBuffer cmd, Output output, bool mask);
 
   vk::Context& ctx_;
   const Scene& scene_;
@@ -64,6 +85,7 @@ class Renderer {
 
   vk::Buffer vertices_, indices_, instances_, models_, leaves_, prune_tables_;
   vk::Buffer frame_, commands_, counts_, counts_readback_, image_readback_;
+  vk::Buffer coverage_reference_, coverage_test_, pr_counts_, pr_readback_;
   vk::Image leaf_textures_;
   VkSampler sampler_ = VK_NULL_HANDLE;
   vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
@@ -78,7 +100,7 @@ class Renderer {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
-  VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE;
+  VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE, pr_count_ = VK_NULL_HANDLE;
   VkQueryPool timestamps_ = VK_NULL_HANDLE;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
