@@ -1,7 +1,15 @@
 // glTF 2.0 binary I/O through tinygltf. Layout of an asset:
 //   scene 0 -> node "tree" -> children "branches" (mesh "branches", material "bark")
 //                                      "leaves"   (mesh "leaf_card", material "leaf",
-//                                                  EXT_mesh_gpu_instancing T/R/S accessors)
+//                                                  EXT_mesh_gpu_instancing T/R/S accessors
+//                                                  and _COLOR: per-leaf color multiplier)
+//   nodes "branches_lod1", "branches_lod2", ... (meshes of the same names, material "bark",
+//     mesh extras {"forest_lod": {"level": i, "error": meters}}): the simplified branch LODs.
+//     They are not in the scene, so a generic viewer shows LOD0 only; decode_glb finds them
+//     by their extras.
+//   material "leaf": baseColorTexture = the leaf texture (PNG in the binary chunk),
+//     alphaMode MASK, alphaCutoff 0.5 (glTF's default, so tinygltf writes it implicitly),
+//     double sided
 //   root extras.forest = TreeModel::meta
 // One buffer, one tightly packed buffer view per accessor (so no byteStride anywhere).
 // tinygltf and stb are compiled here, once for the whole program. Debian puts stb in
@@ -18,6 +26,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -139,15 +148,51 @@ struct Writer {
     return int(model.accessors.size() - 1);
   }
 
-  int add_material(const std::string& name, glm::vec3 color, bool double_sided) {
+  // texture < 0: untextured and opaque; else alpha-masked with that base color texture.
+  int add_material(const std::string& name, glm::vec3 color, bool double_sided, int texture = -1) {
     tinygltf::Material m;
     m.name = name;
     m.pbrMetallicRoughness.baseColorFactor = {color.r, color.g, color.b, 1.0};
     m.pbrMetallicRoughness.metallicFactor = 0.0;
     m.pbrMetallicRoughness.roughnessFactor = 1.0;
     m.doubleSided = double_sided;
+    if (texture >= 0) {
+      m.pbrMetallicRoughness.baseColorTexture.index = texture;
+      m.alphaMode = "MASK";
+      m.alphaCutoff = 0.5;
+    }
     model.materials.push_back(m);
     return int(model.materials.size() - 1);
+  }
+
+  // An RGBA8 image as a PNG in the binary chunk, with a trilinear, clamped sampler.
+  int add_texture(const std::string& name, const Image8& img) {
+    std::vector<unsigned char> png;
+    auto sink = [](void* ctx, void* data, int size) {
+      auto* out = static_cast<std::vector<unsigned char>*>(ctx);
+      const auto* p = static_cast<const unsigned char*>(data);
+      out->insert(out->end(), p, p + size);
+    };
+    if (!stbi_write_png_to_func(sink, &png, int(img.width), int(img.height), 4, img.rgba.data(),
+                                int(img.width) * 4))
+      throw std::runtime_error("cannot encode the " + name + " texture as PNG");
+    tinygltf::Image image;
+    image.name = name;
+    image.mimeType = "image/png";
+    image.bufferView = add_view(png.data(), png.size(), 0);
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    model.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.name = name;
+    texture.sampler = int(model.samplers.size() - 1);
+    texture.source = int(model.images.size() - 1);
+    model.textures.push_back(texture);
+    return int(model.textures.size() - 1);
   }
 
   int add_mesh(const std::string& name, const Mesh& mesh, int material) {
@@ -255,10 +300,39 @@ struct Reader {
 
   // The first triangle primitive of a node's mesh: vertices, indices and material color.
   Mesh mesh(const tinygltf::Node& node, glm::vec3* color) const {
-    Mesh out;
-    if (node.mesh < 0) return out;
+    if (node.mesh < 0) return Mesh{};
     if (size_t(node.mesh) >= model.meshes.size()) fail("node '" + node.name + "': mesh index out of range");
-    const tinygltf::Mesh& m = model.meshes[size_t(node.mesh)];
+    return mesh(model.meshes[size_t(node.mesh)], color);
+  }
+
+  // The material of a mesh's first primitive, or nullptr.
+  const tinygltf::Material* material(const tinygltf::Mesh& m) const {
+    if (m.primitives.empty()) return nullptr;
+    int i = m.primitives[0].material;
+    return i >= 0 && size_t(i) < model.materials.size() ? &model.materials[size_t(i)] : nullptr;
+  }
+
+  // The base color texture of a material as RGBA8; empty when it has none.
+  Image8 base_color_texture(const tinygltf::Material* mat) const {
+    Image8 out;
+    if (!mat) return out;
+    int t = mat->pbrMetallicRoughness.baseColorTexture.index;
+    if (t < 0) return out;
+    if (size_t(t) >= model.textures.size()) fail("material '" + mat->name + "': texture index out of range");
+    int src = model.textures[size_t(t)].source;
+    if (src < 0 || size_t(src) >= model.images.size()) fail("texture " + std::to_string(t) + ": image index out of range");
+    const tinygltf::Image& img = model.images[size_t(src)];
+    if (img.component != 4 || img.bits != 8 || img.width <= 0 || img.height <= 0 ||
+        img.image.size() != size_t(img.width) * size_t(img.height) * 4)
+      fail("image " + std::to_string(src) + ": not decoded as RGBA8");
+    out.width = uint32_t(img.width);
+    out.height = uint32_t(img.height);
+    out.rgba = img.image;
+    return out;
+  }
+
+  Mesh mesh(const tinygltf::Mesh& m, glm::vec3* color) const {
+    Mesh out;
     if (m.primitives.empty()) fail("mesh '" + m.name + "' has no primitives");
     const tinygltf::Primitive& prim = m.primitives[0];
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
@@ -306,6 +380,11 @@ struct Reader {
     std::vector<float> s = floats(index("SCALE"), TINYGLTF_TYPE_VEC3, "SCALE");
     size_t n = t.size() / 3;
     if (r.size() / 4 != n || s.size() / 3 != n) fail("instance attribute counts differ");
+    std::vector<float> color;  // optional per-leaf color multiplier
+    if (attrs.Has("_COLOR")) {
+      color = floats(index("_COLOR"), TINYGLTF_TYPE_VEC3, "_COLOR");
+      if (color.size() / 3 != n) fail("instance attribute counts differ");
+    }
     out.resize(n);
     for (size_t i = 0; i < n; ++i) {
       out[i].position = {t[3 * i], t[3 * i + 1], t[3 * i + 2]};
@@ -314,6 +393,7 @@ struct Reader {
       if (!(len > 1e-6f)) fail("ROTATION: zero quaternion");
       out[i].rotation = q / len;
       out[i].scale = (s[3 * i] + s[3 * i + 1] + s[3 * i + 2]) / 3.0f;  // cards scale uniformly
+      if (!color.empty()) out[i].color = {color[3 * i], color[3 * i + 1], color[3 * i + 2]};
     }
     return out;
   }
@@ -331,10 +411,29 @@ bool no_write(std::string* err, const std::string&, const std::vector<unsigned c
   if (err) *err = "writing files is not supported";
   return false;
 }
-bool no_images(tinygltf::Image*, const int, std::string* err, std::string*, int, int,
-               const unsigned char*, int, void*) {
-  if (err) *err = "images are not supported";
-  return false;
+// Embedded images (buffer views) are decoded by stb_image to RGBA8, within a size limit.
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                const unsigned char* bytes, int size, void*) {
+  constexpr int kMaxSide = 4096;
+  int w = 0, h = 0, comp = 0;
+  if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &comp) || w <= 0 || h <= 0 ||
+      w > kMaxSide || h > kMaxSide) {
+    if (err) *err = "image " + std::to_string(index) + ": not a readable PNG/JPEG of at most 4096^2 pixels";
+    return false;
+  }
+  unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
+  if (!pixels) {
+    if (err) *err = "image " + std::to_string(index) + ": " + stbi_failure_reason();
+    return false;
+  }
+  image->width = w;
+  image->height = h;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(pixels, pixels + size_t(w) * size_t(h) * 4);
+  stbi_image_free(pixels);
+  return true;
 }
 
 }  // namespace
@@ -349,8 +448,11 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   root.name = "tree";
   tinygltf::Node branches;
   branches.name = "branches";
-  if (drawable(tree.branches))
-    branches.mesh = w.add_mesh("branches", tree.branches, w.add_material("bark", tree.bark_color, false));
+  int bark = -1;
+  if (drawable(tree.branches)) {
+    bark = w.add_material("bark", tree.bark_color, false);
+    branches.mesh = w.add_mesh("branches", tree.branches, bark);
+  }
   m.nodes.push_back(root);
   m.nodes.push_back(branches);
   m.nodes[0].children.push_back(1);
@@ -358,24 +460,40 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   if (!tree.leaves.empty() && drawable(tree.leaf_card)) {
     tinygltf::Node leaves;
     leaves.name = "leaves";
-    leaves.mesh = w.add_mesh("leaf_card", tree.leaf_card, w.add_material("leaf", tree.leaf_color, true));
-    std::vector<float> t, r, s;
+    int texture = tree.leaf_texture.rgba.empty() ? -1 : w.add_texture("leaf", tree.leaf_texture);
+    leaves.mesh = w.add_mesh("leaf_card", tree.leaf_card, w.add_material("leaf", tree.leaf_color, true, texture));
+    std::vector<float> t, r, s, c;
     for (const LeafPlacement& l : tree.leaves) {
       t.insert(t.end(), {l.position.x, l.position.y, l.position.z});
       glm::quat q = glm::normalize(l.rotation);
       r.insert(r.end(), {q.x, q.y, q.z, q.w});
       s.insert(s.end(), {l.scale, l.scale, l.scale});
+      c.insert(c.end(), {l.color.r, l.color.g, l.color.b});
     }
     tinygltf::Value::Object attrs;
     attrs["TRANSLATION"] = tinygltf::Value(w.add_floats(t, 3, 0, false));
     attrs["ROTATION"] = tinygltf::Value(w.add_floats(r, 4, 0, false));
     attrs["SCALE"] = tinygltf::Value(w.add_floats(s, 3, 0, false));
+    attrs["_COLOR"] = tinygltf::Value(w.add_floats(c, 3, 0, false));
     tinygltf::Value::Object ext;
     ext["attributes"] = tinygltf::Value(std::move(attrs));
     leaves.extensions[kInstancing] = tinygltf::Value(std::move(ext));
     m.nodes.push_back(leaves);
     m.nodes[0].children.push_back(int(m.nodes.size() - 1));
     m.extensionsUsed.push_back(kInstancing);
+  }
+
+  for (size_t i = 0; i < tree.branch_lods.size(); ++i) {
+    const MeshLod& lod = tree.branch_lods[i];
+    if (!drawable(lod.mesh)) continue;
+    if (bark < 0) bark = w.add_material("bark", tree.bark_color, false);
+    std::string name = "branches_lod" + std::to_string(i + 1);
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = w.add_mesh(name, lod.mesh, bark);
+    m.meshes[size_t(node.mesh)].extras = to_value(
+        nlohmann::json{{"forest_lod", {{"level", i + 1}, {"error", lod.error}}}});
+    m.nodes.push_back(node);
   }
 
   tinygltf::Scene scene;
@@ -428,7 +546,7 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
   tinygltf::TinyGLTF gltf;
   tinygltf::FsCallbacks fs{no_file_exists, no_expand, no_read, no_write, nullptr};
   gltf.SetFsCallbacks(fs);
-  gltf.SetImageLoader(no_images, nullptr);
+  gltf.SetImageLoader(load_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
@@ -453,7 +571,25 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
   if (leaves) {
     tree.leaf_card = r.mesh(*leaves, &tree.leaf_color);
     tree.leaves = r.instances(*leaves);
+    if (leaves->mesh >= 0) tree.leaf_texture = r.base_color_texture(r.material(model.meshes[size_t(leaves->mesh)]));
   }
+  // Branch LODs: the meshes tagged extras.forest_lod, by level.
+  std::vector<std::pair<int, MeshLod>> lods;
+  for (const tinygltf::Mesh& mesh : model.meshes) {
+    if (!mesh.extras.IsObject() || !mesh.extras.Has("forest_lod")) continue;
+    nlohmann::json tag = to_json(mesh.extras.Get("forest_lod"));
+    if (!tag.is_object() || !tag.contains("level") || !tag["level"].is_number_integer() ||
+        !tag.contains("error") || !tag["error"].is_number() || !std::isfinite(tag["error"].get<double>()) ||
+        tag["error"].get<double>() < 0.0)
+      r.fail("mesh '" + mesh.name + "': extras.forest_lod needs an integer level and an error >= 0");
+    MeshLod lod;
+    glm::vec3 unused;
+    lod.mesh = r.mesh(mesh, &unused);
+    lod.error = float(tag["error"].get<double>());
+    lods.emplace_back(tag["level"].get<int>(), std::move(lod));
+  }
+  std::stable_sort(lods.begin(), lods.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [level, lod] : lods) tree.branch_lods.push_back(std::move(lod));
   if (model.extras.IsObject() && model.extras.Has("forest")) {
     tree.meta = to_json(model.extras.Get("forest"));
     if (!tree.meta.is_object()) r.fail("extras.forest is not an object");

@@ -2,8 +2,12 @@
 //   name, seed (0..2^53), iterations (required, 0..12), axiom (required; see lsystem.h for
 //   the alphabet), angle / angle_jitter / roll_jitter (degrees), step (m) / step_jitter
 //   (fraction) / length_scale (factor of '!'), tropism ([x, y, z]) / tropism_strength,
-//   tip_radius (m) / pipe_exponent (pipe model), leaf_size (m, 0 = no leaves) /
-//   leaf_size_jitter / leaf_angle / leaf_angle_jitter (deg) / leaves_per_tip / leaves_along,
+//   tip_radius (m) / pipe_exponent (pipe model: 2 da Vinci, 2.49 Murray, 3), leaf_size (m,
+//   0 = no leaves) / leaf_size_jitter / leaf_angle / leaf_angle_jitter (deg) / leaves_per_tip
+//   (tip cluster) / leaves_along (leaf nodes per twig segment) / phyllotaxis ("alternate" or
+//   "distichous", "opposite" or "decussate", "whorled", "spiral") / leaves_per_node (whorled
+//   only, >= 3) / divergence_angle (deg, spiral only) / leaf_shape ("ovate", "elliptic",
+//   "lanceolate", "needles": texture and card) / leaf_color_jitter (per-leaf color variation),
 //   ring_sides_min / ring_sides_max (mesher), bark_color / leaf_color (linear RGB), and
 //   [[production]] tables { predecessor = "X" (one letter), successor = "...", weight = 1.0 }.
 #include "generators/methods/lsystem_method.h"
@@ -35,6 +39,7 @@ struct LSystemSpecies {
   MesherParams mesher;
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
   glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
+  LeafShape leaf_shape = LeafShape::ovate;
 };
 
 void check_syntax(const TomlTable& t, std::string_view key, const std::string& s) {
@@ -46,7 +51,8 @@ LSystemSpecies read_species(const TomlTable& t) {
                 "roll_jitter", "step", "step_jitter", "length_scale", "tip_radius",
                 "pipe_exponent", "tropism", "tropism_strength", "leaf_size", "leaf_size_jitter",
                 "leaf_angle", "leaf_angle_jitter", "leaves_per_tip", "leaves_along",
-                "ring_sides_min", "ring_sides_max", "bark_color", "leaf_color", "production"});
+                "phyllotaxis", "leaves_per_node", "divergence_angle", "leaf_shape",
+                "leaf_color_jitter", "ring_sides_min", "ring_sides_max", "bark_color", "leaf_color", "production"});
   LSystemSpecies s;
   t.string("name", "");  // type check only; the name is read by the caller
   s.seed = uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53));
@@ -76,9 +82,25 @@ LSystemSpecies read_species(const TomlTable& t) {
   l.angle_jitter_deg = float(t.number("leaf_angle_jitter", 10.0, 0.0, 90.0));
   l.per_tip = int(t.integer("leaves_per_tip", 1, 0, 16));
   l.along = int(t.integer("leaves_along", 0, 0, 16));
+  l.phyllotaxis = *parse_phyllotaxis(
+      t.choice("phyllotaxis", "spiral", {"alternate", "distichous", "opposite", "decussate", "whorled", "spiral"}));
+  if (l.phyllotaxis == Phyllotaxis::whorled) {
+    l.per_node = int(t.integer("leaves_per_node", 3, 3, 16));
+  } else if (t.has("leaves_per_node")) {
+    int implied = leaves_at_node(l.phyllotaxis, 0);
+    if (t.integer("leaves_per_node", implied, 1, 16) != implied)
+      t.fail("leaves_per_node", std::string("must be ") + std::to_string(implied) + " for phyllotaxis \"" +
+                                    phyllotaxis_name(l.phyllotaxis) + "\" (only whorled leaves choose their count)");
+  }
+  l.divergence_deg = float(t.number("divergence_angle", 137.5, 0.0, 360.0));
+  if (t.has("divergence_angle") && l.phyllotaxis != Phyllotaxis::spiral)
+    t.fail("divergence_angle", "applies to phyllotaxis \"spiral\" only");
+  l.color_jitter = float(t.number("leaf_color_jitter", 0.0, 0.0, 0.5));
+  s.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", "ovate", {"ovate", "elliptic", "lanceolate", "needles"}));
   p.leaf_angle_deg = l.angle_deg;
   p.leaf_size = l.size;
   p.leaf_size_jitter = l.size_jitter;
+  p.leaf_color_jitter = l.color_jitter;
 
   s.mesher.min_sides = int(t.integer("ring_sides_min", 3, 3, 32));
   s.mesher.max_sides = int(t.integer("ring_sides_max", 8, 3, 32));
@@ -132,7 +154,9 @@ TreeModel generate_lsystem(const TomlTable& root, const std::string& species_nam
     for (const TreeNode& n : graph.nodes)
       if (n.parent >= 0) has_child[size_t(n.parent)] = 1;
     for (char c : has_child) tips -= size_t(c);
-    size_t bound = tips * size_t(s.leaves.per_tip) + (graph.nodes.size() - tips) * size_t(s.leaves.along);
+    size_t bound = tips * size_t(s.leaves.per_tip) +
+                   graph.nodes.size() * size_t(s.leaves.along) *
+                       size_t(leaves_at_node(s.leaves.phyllotaxis, s.leaves.per_node));
     if (bound > kMaxLeaves)
       root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
                 "could give up to " + std::to_string(bound) + " leaves, more than " +
@@ -152,6 +176,7 @@ TreeModel generate_lsystem(const TomlTable& root, const std::string& species_nam
   d.parameters = toml_to_json(root.raw());
   d.bark_color = s.bark_color;
   d.leaf_color = s.leaf_color;
+  d.leaf_shape = s.leaf_shape;
   return build_tree_model(graph, d, s.mesher);
 }
 
@@ -178,6 +203,8 @@ pipe_exponent = 2.0   # da Vinci
 leaf_size = 0.05
 leaf_size_jitter = 0.25
 leaf_angle = 35.0
+leaf_shape = "elliptic"
+leaf_color_jitter = 0.1
 leaves_per_tip = 1
 bark_color = [0.22, 0.16, 0.10]
 leaf_color = [0.14, 0.32, 0.06]

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "generators/tree/mesh_lod.h"
+
 namespace forest {
 
 namespace {
@@ -33,7 +35,11 @@ TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
                            const MesherParams& mesher) {
   TreeModel model;
   model.branches = mesh_branches(graph, mesher);
-  model.leaf_card = make_leaf_card();
+  optimize_mesh(model.branches);
+  static constexpr float kLodFractions[] = {0.5f, 0.25f, 0.12f};
+  model.branch_lods = simplify_lods(model.branches, kLodFractions);
+  model.leaf_card = make_leaf_card(d.leaf_shape);
+  model.leaf_texture = make_leaf_texture(d.leaf_shape);
   model.leaves = graph.leaves;
   model.bounding_sphere = bounding_sphere(model.branches, model.leaf_card, model.leaves);
   model.bark_color = d.bark_color;
@@ -55,6 +61,13 @@ TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
   m["node_count"] = graph.nodes.size();
   m["leaf_count"] = model.leaves.size();
   m["triangle_count"] = model.branches.indices.size() / 3;
+  nlohmann::json lods = nlohmann::json::array();
+  for (size_t i = 0; i < model.branch_lods.size(); ++i)
+    lods.push_back({{"level", i + 1},
+                    {"triangle_count", model.branch_lods[i].mesh.indices.size() / 3},
+                    {"error", model.branch_lods[i].error}});
+  m["branch_lods"] = lods;
+  m["leaf_shape"] = leaf_shape_name(d.leaf_shape);
   const glm::vec4& s = model.bounding_sphere;
   m["bounding_sphere"] = {s.x, s.y, s.z, s.w};
   m["height"] = height;

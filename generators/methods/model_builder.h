@@ -19,11 +19,15 @@ struct ModelDescription {
   nlohmann::json parameters = nlohmann::json::object();  // the species table as JSON
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
   glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
+  LeafShape leaf_shape = LeafShape::ovate;  // outline of the leaf texture and card
 };
 
-// Meshes the graph (branches + leaf card + leaves), computes the bounding sphere and fills
-// meta with format_version, generator, method, seed, species, parameters, node_count,
-// leaf_count, triangle_count, bounding_sphere and height.
+// Meshes the graph (branches + leaf card + leaves), optimizes the branch mesh for the GPU
+// (vertex cache, vertex fetch), builds its simplified LODs (50%, 25%, 12% of the triangles,
+// errors in meters), draws the leaf texture, computes the bounding sphere and fills meta with
+// format_version, generator, method, seed, species, parameters, node_count, leaf_count,
+// triangle_count, branch_lods ([{level, triangle_count, error}]), leaf_shape,
+// bounding_sphere and height.
 TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& description,
                            const MesherParams& mesher = {});
 

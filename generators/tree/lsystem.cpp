@@ -240,9 +240,10 @@ TreeGraph interpret(std::string_view symbols, const TurtleParams& params, uint64
         float size = params.leaf_size;
         if (params.leaf_size_jitter > 0.0f)
           size *= float(1.0 + double(params.leaf_size_jitter) * rng.symmetric());
-        graph.leaves.push_back(orient_leaf(t.pos, t.heading, azimuth,
-                                           params.leaf_angle_deg * kDegToRad,
-                                           glm::vec3(0.0f, 1.0f, 0.0f), size));
+        LeafPlacement leaf = orient_leaf(t.pos, t.heading, azimuth, params.leaf_angle_deg * kDegToRad,
+                                         glm::vec3(0.0f, 1.0f, 0.0f), size);
+        leaf.color = leaf_color_variation(rng, params.leaf_color_jitter);
+        graph.leaves.push_back(leaf);
         break;
       }
       default: break;  // other letters only steer the rewriting

@@ -65,6 +65,7 @@ struct TurtleParams {
   float leaf_angle_deg = 40.0f;
   float leaf_size = 0.1f;
   float leaf_size_jitter = 0.0f;
+  float leaf_color_jitter = 0.0f;  // per-leaf color variation (leaves.h leaf_color_variation)
 };
 
 // Interprets `symbols` with a 3D turtle starting at the origin heading +Y. Node 0 is the

@@ -175,6 +175,69 @@ TEST(AssetIo, LayoutFollowsTheFormat) {
   EXPECT_TRUE(j["accessors"][0].contains("min"));
 }
 
+TEST(AssetIo, LodsTextureAndLeafColorsRoundTrip) {
+  std::string text = kSmallSpecies;
+  text.insert(text.find("[[production]]"), "leaf_color_jitter = 0.3\nleaf_shape = \"lanceolate\"\n");
+  TreeModel m = generate_from_species_text(text, "small.toml", {7});
+  ASSERT_GE(m.branch_lods.size(), 1u);
+  ASSERT_FALSE(m.leaf_texture.rgba.empty());
+  bool varied = false;
+  for (const LeafPlacement& l : m.leaves) varied = varied || l.color != m.leaves[0].color;
+  ASSERT_TRUE(varied);
+  std::vector<uint8_t> bytes = encode_glb(m);
+  TreeModel d = decode_glb(bytes, "mem.glb");
+  // LODs: same meshes, same errors, in level order.
+  ASSERT_EQ(d.branch_lods.size(), m.branch_lods.size());
+  for (size_t i = 0; i < m.branch_lods.size(); ++i) {
+    EXPECT_EQ(d.branch_lods[i].error, m.branch_lods[i].error);
+    EXPECT_EQ(d.branch_lods[i].mesh.indices, m.branch_lods[i].mesh.indices);
+    ASSERT_EQ(d.branch_lods[i].mesh.vertices.size(), m.branch_lods[i].mesh.vertices.size());
+    for (size_t k = 0; k < m.branch_lods[i].mesh.vertices.size(); ++k)
+      EXPECT_EQ(d.branch_lods[i].mesh.vertices[k].position, m.branch_lods[i].mesh.vertices[k].position);
+  }
+  // The leaf texture: lossless PNG.
+  EXPECT_EQ(d.leaf_texture.width, m.leaf_texture.width);
+  EXPECT_EQ(d.leaf_texture.height, m.leaf_texture.height);
+  EXPECT_EQ(d.leaf_texture.rgba, m.leaf_texture.rgba);
+  // Per-leaf colors.
+  ASSERT_EQ(d.leaves.size(), m.leaves.size());
+  for (size_t i = 0; i < m.leaves.size(); ++i) EXPECT_EQ(d.leaves[i].color, m.leaves[i].color);
+
+  // The JSON: LOD meshes tagged in their extras, outside the scene; the leaf material is
+  // alpha-masked with the embedded texture; _COLOR is a float VEC3 instance attribute.
+  uint32_t json_len;
+  std::memcpy(&json_len, bytes.data() + 12, 4);
+  nlohmann::json j = nlohmann::json::parse(bytes.begin() + 20, bytes.begin() + 20 + json_len);
+  size_t tagged = 0;
+  for (const auto& mesh : j["meshes"]) {
+    if (!mesh.contains("extras")) continue;
+    const auto& tag = mesh["extras"]["forest_lod"];
+    ++tagged;
+    EXPECT_EQ(mesh["name"], "branches_lod" + std::to_string(int(tag["level"])));
+    EXPECT_FLOAT_EQ(float(tag["error"].get<double>()), m.branch_lods[size_t(int(tag["level"])) - 1].error);
+  }
+  EXPECT_EQ(tagged, m.branch_lods.size());
+  for (int child : j["nodes"][0]["children"]) EXPECT_EQ(j["nodes"][child]["name"].get<std::string>().find("lod"), std::string::npos);
+  const auto& leaf = j["materials"][1];
+  EXPECT_EQ(leaf["name"], "leaf");
+  EXPECT_EQ(leaf["alphaMode"], "MASK");
+  EXPECT_EQ(leaf.value("alphaCutoff", 0.5), 0.5);  // the glTF default, which tinygltf leaves implicit
+  int tex = leaf["pbrMetallicRoughness"]["baseColorTexture"]["index"];
+  int img = j["textures"][tex]["source"];
+  EXPECT_EQ(j["images"][img]["mimeType"], "image/png");
+  EXPECT_TRUE(j["images"][img].contains("bufferView"));
+  int color = j["nodes"][2]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["_COLOR"];
+  EXPECT_EQ(j["accessors"][color]["type"], "VEC3");
+  EXPECT_EQ(j["accessors"][color]["componentType"], 5126);
+  // A model without texture or LODs writes neither.
+  TreeModel plain = m;
+  plain.branch_lods.clear();
+  plain.leaf_texture = Image8{};
+  TreeModel p = decode_glb(encode_glb(plain), "plain.glb");
+  EXPECT_TRUE(p.branch_lods.empty());
+  EXPECT_TRUE(p.leaf_texture.rgba.empty());
+}
+
 TEST(AssetIo, AcceptsSmallIndexTypesAndNoLeaves) {
   for (int type : {5121, 5123, 5125}) {
     auto [j, bin] = triangle_asset(type);

@@ -1,9 +1,10 @@
-// Branch tubes, leaf card and bounding sphere.
+// Branch tubes along B-spline axes, their rings, frames and bark UVs, and the bounding sphere.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "generators/tree/frames.h"
 #include "generators/tree/leaves.h"
 #include "generators/tree/lsystem.h"
 #include "generators/tree/mesher.h"
@@ -45,47 +46,42 @@ glm::vec3 closest_on_segment(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
 
 }  // namespace
 
-TEST(Mesher, RingsAreCirclesOfTheNodeRadiusAroundTheAxis) {
+TEST(Mesher, RingsAreCirclesOfTheirRadiusAroundTheAxis) {
   TreeGraph g = test_tree();
   BranchMeshInfo info;
   Mesh m = mesh_branches(g, {}, &info);
-  auto children = children_of(g);
   ASSERT_FALSE(info.rings.empty());
-  size_t expected_vertices = info.cap_vertices.size();
+  float r_lo = 1e9f, r_hi = 0.0f;
+  for (const TreeNode& n : g.nodes) r_lo = std::min(r_lo, n.radius), r_hi = std::max(r_hi, n.radius);
   for (size_t k = 0; k < info.rings.size(); ++k) {
     const TubeRing& r = info.rings[k];
-    expected_vertices += r.sides + 1;
     EXPECT_GE(r.sides, 3u);
     EXPECT_LE(r.sides, 8u);
-    EXPECT_EQ(r.center, g.nodes[r.node].position);
-    // The radius is the node's, except the first ring of a side chain, which starts at its
-    // parent with the branch's own radius.
-    bool first_of_chain = k == 0 || info.rings[k - 1].chain != r.chain;
-    bool ok = r.radius == g.nodes[r.node].radius;
-    if (!ok && first_of_chain)
-      for (uint32_t c : children[r.node]) ok = ok || r.radius == g.nodes[c].radius;
-    EXPECT_TRUE(ok) << "ring " << k;
+    // The spline's radius stays within the node radii (its weights are convex).
+    EXPECT_GE(r.radius, r_lo * 0.999f);
+    EXPECT_LE(r.radius, r_hi * 1.001f);
     EXPECT_NEAR(glm::length(r.tangent), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(r.normal, r.tangent), 0.0f, 1e-5f);
     for (uint32_t j = 0; j <= r.sides; ++j) {
       const Vertex& v = m.vertices[r.first_vertex + j];
       glm::vec3 d = v.position - r.center;
       EXPECT_NEAR(glm::length(d), r.radius, 1e-4f * r.radius + 1e-6f);
-      EXPECT_NEAR(glm::dot(d, r.tangent), 0.0f, 1e-3f * r.radius + 1e-6f);
+      EXPECT_NEAR(glm::dot(d, r.tangent), 0.0f, 1e-3f * r.radius + 1e-6f);  // in the plane ⊥ T
       EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
       EXPECT_GT(glm::dot(v.normal, d), 0.99f * r.radius);  // radial, outward
       EXPECT_NEAR(v.uv.x, float(j) / float(r.sides), 1e-6f);
     }
-    // The seam vertex repeats the first position exactly.
+    // Vertex 0 lies along the frame's normal; the seam vertex repeats it exactly.
+    EXPECT_NEAR(glm::length(m.vertices[r.first_vertex].position - (r.center + r.radius * r.normal)), 0.0f, 1e-5f);
     EXPECT_EQ(m.vertices[r.first_vertex].position, m.vertices[r.first_vertex + r.sides].position);
-    if (!first_of_chain) {
-      EXPECT_EQ(r.sides, info.rings[k - 1].sides);
-    }
+    if (k > 0 && info.rings[k - 1].chain == r.chain) EXPECT_EQ(r.sides, info.rings[k - 1].sides);
   }
-  EXPECT_EQ(m.vertices.size(), expected_vertices);
-  // One chain per tip (each chain ends in exactly one tip), each closed by one cone.
+  // Every tip ends in one apex (the last piece of each chain tapers to a point).
+  auto children = children_of(g);
   size_t tips = 0;
   for (size_t i = 1; i < children.size(); ++i) tips += children[i].empty();
   EXPECT_EQ(info.cap_vertices.size(), tips);
+  EXPECT_EQ(info.chains, tips);
 }
 
 TEST(Mesher, TrianglesAreValidAndWoundOutward) {
@@ -93,17 +89,22 @@ TEST(Mesher, TrianglesAreValidAndWoundOutward) {
   BranchMeshInfo info;
   Mesh m = mesh_branches(g, {}, &info);
   ASSERT_EQ(m.indices.size() % 3, 0u);
-  // Vertex -> chain, and each chain's axis polyline (ring centers, then the cone apex).
-  std::vector<int> chain_of(m.vertices.size(), -1);
-  std::vector<std::vector<glm::vec3>> axis(info.cap_vertices.size());
+  // Vertex -> piece, and each piece's axis polyline (ring centers, then its apex).
+  std::vector<int> piece_of(m.vertices.size(), -1);
+  std::vector<std::vector<glm::vec3>> axis(info.pieces);
   for (const TubeRing& r : info.rings) {
-    for (uint32_t j = 0; j <= r.sides; ++j) chain_of[r.first_vertex + j] = int(r.chain);
-    axis[r.chain].push_back(r.center);
+    for (uint32_t j = 0; j <= r.sides; ++j) piece_of[r.first_vertex + j] = int(r.piece);
+    axis[r.piece].push_back(r.center);
   }
-  for (size_t c = 0; c < info.cap_vertices.size(); ++c) chain_of[info.cap_vertices[c]] = int(c);
-  for (int c : chain_of) ASSERT_GE(c, 0);
-
-  size_t side = 0, cap = 0;
+  // A start cap's center, then the apex, follow their piece's last ring.
+  for (uint32_t c : info.start_cap_vertices) piece_of[c] = piece_of[c - 1];
+  for (uint32_t apex : info.cap_vertices) {
+    int piece = piece_of[apex - 1];
+    piece_of[apex] = piece;
+    axis[size_t(piece)].push_back(m.vertices[apex].position);
+  }
+  size_t tube = 0, cone = 0, junction = 0, start_caps = 0;
+  double signed_volume = 0.0;
   for (size_t t = 0; t < m.indices.size(); t += 3) {
     uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
     ASSERT_LT(ia, m.vertices.size());
@@ -114,11 +115,18 @@ TEST(Mesher, TrianglesAreValidAndWoundOutward) {
     glm::vec3 n = glm::cross(b - a, c - a);
     float longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
     EXPECT_GT(glm::length(n), 1e-6f * longest * longest) << "degenerate triangle " << t / 3;
-    int chain = chain_of[ia];
-    EXPECT_EQ(chain_of[ib], chain);
-    EXPECT_EQ(chain_of[ic], chain);
+    signed_volume += glm::dot(glm::dvec3(a), glm::cross(glm::dvec3(b), glm::dvec3(c))) / 6.0;
+    int piece = piece_of[ia];
+    if (piece < 0 || piece_of[ib] != piece || piece_of[ic] != piece) {
+      ++junction;  // joins the rings of several pieces
+      continue;
+    }
+    if (std::find(info.start_cap_vertices.begin(), info.start_cap_vertices.end(), ia) != info.start_cap_vertices.end()) {
+      ++start_caps;  // flat, facing back along the branch
+      continue;
+    }
     glm::vec3 centroid = (a + b + c) / 3.0f;
-    const auto& poly = axis[size_t(chain)];
+    const auto& poly = axis[size_t(piece)];
     glm::vec3 best = poly[0];
     for (size_t k = 0; k + 1 < poly.size(); ++k) {
       glm::vec3 q = closest_on_segment(centroid, poly[k], poly[k + 1]);
@@ -126,54 +134,96 @@ TEST(Mesher, TrianglesAreValidAndWoundOutward) {
     }
     EXPECT_GT(glm::dot(glm::normalize(n), glm::normalize(centroid - best)), 0.0f)
         << "triangle " << t / 3 << " faces inward";
-    bool is_cap = std::find(info.cap_vertices.begin(), info.cap_vertices.end(), ic) != info.cap_vertices.end();
-    (is_cap ? cap : side)++;
+    bool is_cone = std::find(info.cap_vertices.begin(), info.cap_vertices.end(), ic) != info.cap_vertices.end();
+    (is_cone ? cone : tube)++;
   }
-  // Triangle count: 2 per side per ring pair, 1 per side per cap.
-  size_t expect_side = 0, expect_cap = 0;
+  // 2n triangles per ring pair of a piece, n per tip cone, the rest joins forks.
+  size_t expect_tube = 0, expect_cone = 0;
   for (size_t k = 0; k < info.rings.size(); ++k) {
-    bool last = k + 1 == info.rings.size() || info.rings[k + 1].chain != info.rings[k].chain;
-    (last ? expect_cap : expect_side) += last ? info.rings[k].sides : 2 * info.rings[k].sides;
+    bool last = k + 1 == info.rings.size() || info.rings[k + 1].piece != info.rings[k].piece;
+    if (!last) expect_tube += 2 * info.rings[k].sides;
   }
-  EXPECT_EQ(side, expect_side);
-  EXPECT_EQ(cap, expect_cap);
+  for (uint32_t apex : info.cap_vertices) {
+    const TubeRing* last = nullptr;  // the apex's piece's last ring
+    for (const TubeRing& r : info.rings)
+      if (r.piece == uint32_t(piece_of[apex])) last = &r;
+    ASSERT_NE(last, nullptr);
+    expect_cone += last->sides;
+  }
+  EXPECT_EQ(tube, expect_tube);
+  EXPECT_EQ(cone, expect_cone);
+  EXPECT_EQ(junction, info.junction_triangles);
+  size_t expect_start_caps = 0;
+  for (uint32_t c : info.start_cap_vertices)
+    for (const TubeRing& r : info.rings)
+      if (r.piece == uint32_t(piece_of[c])) {
+        expect_start_caps += r.sides;
+        break;
+      }
+  EXPECT_EQ(start_caps, expect_start_caps);
+  EXPECT_EQ(info.start_cap_vertices.size(), info.embedded_starts);
+  EXPECT_GT(info.junctions, 0u);
+  // Closed and consistently oriented (test_bifurcation), so a positive volume means every
+  // triangle faces outward; the open base ring only adds a thin sliver.
+  EXPECT_GT(signed_volume, 0.0);
 }
 
-TEST(Mesher, CollinearNodesAreSkippedButEndsKept) {
+TEST(Mesher, StraightPartsGetFewRingsBendsMore) {
   MesherParams p;
   BranchMeshInfo info;
   mesh_branches(straight("FFFFFFFFFF"), p, &info);
-  ASSERT_EQ(info.rings.size(), 2u);  // a straight pipe: both ends only
-  EXPECT_EQ(info.rings[0].node, 0u);
-  EXPECT_EQ(info.rings[1].node, 10u);
+  ASSERT_EQ(info.rings.size(), 1u);  // a straight pole: the base ring, then the apex
+  EXPECT_EQ(info.cap_vertices.size(), 1u);
   mesh_branches(straight("FFFFF+FFFFF"), p, &info);
-  ASSERT_EQ(info.rings.size(), 3u);  // plus the bend
-  EXPECT_EQ(info.rings[1].node, 5u);
-  // A side branch halves the pipe: a ring where the radius changes, even when straight.
-  mesh_branches(straight("FFFF[+F]FFFF"), p, &info);
-  size_t main_rings = 0;
-  for (const TubeRing& r : info.rings) main_rings += r.chain == 0;
-  EXPECT_EQ(main_rings, 3u);
-  p.radius_tolerance = -1.0f;  // keep everything
-  mesh_branches(straight("FFFFFFFFFF"), p, &info);
-  EXPECT_EQ(info.rings.size(), 11u);
+  size_t bent = info.rings.size();
+  EXPECT_GE(bent, 2u);  // a 30° bend needs rings along the spline's turn
+  p.max_bend_deg = 5.0f;
+  mesh_branches(straight("FFFFF+FFFFF"), p, &info);
+  EXPECT_GT(info.rings.size(), bent);
+  // Consecutive rings turn by about the maximum bend at most.
+  for (size_t k = 1; k < info.rings.size(); ++k)
+    EXPECT_LT(std::acos(std::min(1.0f, glm::dot(info.rings[k].tangent, info.rings[k - 1].tangent))),
+              2.0f * 5.0f * 3.14159265f / 180.0f);
 }
 
-TEST(Mesher, ParallelTransportDoesNotTwistStraightTubes) {
-  MesherParams p;
-  p.radius_tolerance = -1.0f;
+TEST(Mesher, ParallelTransportedRingsDoNotTwist) {
+  TreeGraph g = test_tree();
   BranchMeshInfo info;
-  TreeGraph g = straight("FFFFF");
-  Mesh m = mesh_branches(g, p, &info);
-  glm::vec3 first = m.vertices[info.rings[0].first_vertex].position - info.rings[0].center;
-  for (const TubeRing& r : info.rings) {
-    glm::vec3 d = m.vertices[r.first_vertex].position - r.center;
-    EXPECT_NEAR(glm::length(d - first), 0.0f, 1e-5f);
+  mesh_branches(g, {}, &info);
+  size_t checked = 0;
+  for (size_t k = 1; k < info.rings.size(); ++k) {
+    const TubeRing &a = info.rings[k - 1], &b = info.rings[k];
+    if (a.piece != b.piece) continue;
+    // The next frame is the previous one turned by the minimal rotation between tangents.
+    glm::vec3 carried = transport(a.normal, a.tangent, b.tangent);
+    EXPECT_NEAR(glm::dot(carried, b.normal), 1.0f, 1e-4f) << k;
+    ++checked;
   }
-  // v grows along the tube in units of its circumference.
-  float circ = 2.0f * 3.14159265f * info.rings[0].radius;
-  for (size_t k = 0; k < info.rings.size(); ++k)
-    EXPECT_NEAR(m.vertices[info.rings[k].first_vertex].uv.y, 0.5f * float(k) / circ, 1e-4f);
+  EXPECT_GT(checked, 10u);
+}
+
+TEST(Mesher, BarkTextureScalesWithTheRadius) {
+  // v counts circumferences: along a tube of constant radius r, v grows by length / (2πr).
+  MesherParams p;
+  p.max_bend_deg = 1.0f;
+  BranchMeshInfo info;
+  TreeGraph g = straight("FFFF+FFFF");  // pipe radii: constant along a single chain
+  Mesh m = mesh_branches(g, p, &info);
+  const float r = g.nodes[1].radius;
+  ASSERT_GE(info.rings.size(), 3u);
+  for (size_t k = 1; k < info.rings.size(); ++k) {
+    float dv = m.vertices[info.rings[k].first_vertex].uv.y - m.vertices[info.rings[k - 1].first_vertex].uv.y;
+    float arc = glm::length(info.rings[k].center - info.rings[k - 1].center);
+    EXPECT_NEAR(dv, arc / (2.0f * 3.14159265f * r), 0.02f * dv + 1e-4f);
+  }
+  // A thinner branch repeats the texture more often per meter.
+  TreeGraph thin = g;
+  for (TreeNode& n : thin.nodes) n.radius *= 0.5f;
+  BranchMeshInfo thin_info;
+  Mesh tm = mesh_branches(thin, p, &thin_info);
+  float v_thick = m.vertices[info.rings.back().first_vertex].uv.y;
+  float v_thin = tm.vertices[thin_info.rings.back().first_vertex].uv.y;
+  EXPECT_NEAR(v_thin, 2.0f * v_thick, 1e-3f * v_thin);
 }
 
 TEST(Mesher, SidesFollowTheChainBaseRadius) {
@@ -186,6 +236,7 @@ TEST(Mesher, SidesFollowTheChainBaseRadius) {
   BranchMeshInfo info;
   mesh_branches(test_tree(), p, &info);
   EXPECT_EQ(info.rings[0].sides, 10u);  // the trunk
+  EXPECT_EQ(info.base_ring_sides, 10u);
   uint32_t thinnest = 99;
   for (const TubeRing& r : info.rings) thinnest = std::min(thinnest, r.sides);
   // The thinnest chains are the tips' (radius 0.004), relative to the trunk.
@@ -202,30 +253,6 @@ TEST(Mesher, PureFunction) {
   TreeGraph empty;
   empty.nodes.push_back(TreeNode{});
   EXPECT_TRUE(mesh_branches(empty).vertices.empty());
-}
-
-TEST(LeafCard, BladeAlongYNormalZ) {
-  Mesh card = make_leaf_card();
-  ASSERT_EQ(card.vertices.size(), 6u);
-  ASSERT_EQ(card.indices.size(), 12u);
-  float min_y = 1e9f, max_y = -1e9f;
-  for (const Vertex& v : card.vertices) {
-    EXPECT_EQ(v.normal, glm::vec3(0, 0, 1));
-    EXPECT_EQ(v.position.z, 0.0f);
-    EXPECT_LT(std::abs(v.position.x), 0.5f);
-    min_y = std::min(min_y, v.position.y);
-    max_y = std::max(max_y, v.position.y);
-    EXPECT_GE(v.uv.x, 0.0f);
-    EXPECT_LE(v.uv.x, 1.0f);
-  }
-  EXPECT_EQ(min_y, 0.0f);
-  EXPECT_EQ(max_y, 1.0f);
-  EXPECT_EQ(card.vertices[0].position, glm::vec3(0, 0, 0));
-  for (size_t t = 0; t < card.indices.size(); t += 3) {
-    glm::vec3 a = card.vertices[card.indices[t]].position, b = card.vertices[card.indices[t + 1]].position,
-              c = card.vertices[card.indices[t + 2]].position;
-    EXPECT_GT(glm::cross(b - a, c - a).z, 1e-3f);  // counter-clockwise seen from +Z
-  }
 }
 
 TEST(BoundingSphere, ContainsEverythingAndIsTight) {
