@@ -2,6 +2,13 @@
 
 #include "generators/common/toml_reader.h"
 #include "generators/methods/lsystem_method.h"
+#include "generators/methods/particle_flow_method.h"
+#include "generators/methods/visual_hull_method.h"
+#include "generators/methods/silhouettes_method.h"
+#include "generators/methods/sketch_mrf_method.h"
+#include "generators/methods/mig_method.h"
+#include "generators/methods/mgv_method.h"
+#include "generators/methods/magnetic_method.h"
 
 namespace forest {
 
@@ -10,6 +17,13 @@ namespace {
 // Every modeling method, one line each.
 const MethodEntry kMethods[] = {
     {"lsystem", generate_lsystem, lsystem_default_species_text, nullptr},
+    {"particle-flow", generate_particle_flow, particle_flow_default_species_text, particle_flow_make_inputs},
+    {"visual-hull", generate_visual_hull, visual_hull_default_species_text, visual_hull_make_inputs},
+    {"sketch-mrf", generate_sketch_mrf, sketch_mrf_default_species_text, sketch_mrf_make_inputs},
+    {"silhouettes", generate_silhouettes, silhouettes_default_species_text, silhouettes_make_inputs},
+    {"mig", generate_mig, mig_default_species_text, nullptr},
+    {"mgv", generate_mgv, mgv_default_species_text, nullptr},
+    {"magnetic", generate_magnetic, magnetic_default_species_text, nullptr},
 };
 
 const MethodEntry* find_method(const std::string& id) {
