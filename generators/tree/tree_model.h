@@ -41,6 +41,7 @@ struct TreeModel {
   Mesh leaf_card;                       // one leaf, local space: blade along +Y, normal +Z
   Image8 leaf_texture;                  // mapped on leaf_card by its uv; empty = untextured
   std::vector<LeafPlacement> leaves;    // instances of leaf_card (in priority order once baked)
+  Mesh hull;  // metaball hull (bake), empty before bake
   glm::vec4 bounding_sphere{0.0f};      // xyz center, w radius: encloses branches and leaves
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};  // linear RGB
   glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};  // linear RGB
