@@ -10,6 +10,7 @@ packages=(
   libglfw3-dev libglm-dev libeigen3-dev libopenimageio-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev
   libtinygltf-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libtbb-dev
+  fonts-dejavu-core
   nodejs npm
 )
 

@@ -5,7 +5,18 @@
 #include <optional>
 #include <string>
 
+#include "engine/render/pr_bake.h"
+
 namespace forest::app {
+
+struct BakeArgs;
+struct BakeResult {
+  PrMeasurement measurement;
+  double hull_seconds = 0, pr_seconds = 0;
+  size_t hull_triangles = 0;
+};
+// Hull, priority order and PR tables into `model` (used by `bake` and `generate --bake`).
+BakeResult bake_model(TreeModel& model, const BakeArgs& args);
 
 struct InfoArgs {
   std::string device;
@@ -33,6 +44,23 @@ struct PreviewArgs {
   uint32_t views = 4;
 };
 int run_preview(const PreviewArgs& args);
+
+struct BakeArgs {
+  std::string model;
+  std::string out;            // empty: bake in place
+  std::string priority = "combined";
+  std::optional<uint64_t> seed;
+  uint32_t views = 6;
+  uint32_t resolution = 256;
+  std::string device;
+};
+int run_bake(const BakeArgs& args);
+
+struct ReportArgs {
+  std::string model;
+  std::string out;
+};
+int run_report(const ReportArgs& args);
 
 struct RenderArgs {
   std::string scene;

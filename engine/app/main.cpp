@@ -39,6 +39,22 @@ int main(int argc, char** argv) {
   preview_cmd->add_option("--views", preview.views, "Number of views around the model")->check(CLI::Range(1, 64));
   preview_cmd->add_option("--device", preview.device, "Device index or name substring");
 
+  app::BakeArgs bake;
+  uint64_t bake_seed = 0;
+  auto* bake_cmd = cli.add_subcommand("bake", "Add the metaball hull, priority-sorted leaves and PR-measured lambda/scale tables to a model");
+  bake_cmd->add_option("model", bake.model, "Model (.glb)")->required();
+  bake_cmd->add_option("--out", bake.out, "Baked model (default: in place)");
+  bake_cmd->add_option("--priority", bake.priority, "Leaf order: random, density, orientation, combined");
+  auto* bake_seed_opt = bake_cmd->add_option("--seed", bake_seed, "Seed of the random parts (default: the model's)");
+  bake_cmd->add_option("--views", bake.views, "Views averaged by the PR measurement")->check(CLI::Range(1, 64));
+  bake_cmd->add_option("--resolution", bake.resolution, "Pixels of each coverage render")->check(CLI::Range(32, 4096));
+  bake_cmd->add_option("--device", bake.device, "Device index or name substring");
+
+  app::ReportArgs report;
+  auto* report_cmd = cli.add_subcommand("report", "Plot a baked model's PR diagram, s(lambda) and lambda(d) as PNG + CSV");
+  report_cmd->add_option("model", report.model, "Baked model (.glb)")->required();
+  report_cmd->add_option("--out", report.out, "Output folder")->required();
+
   app::RenderArgs render;
   uint32_t width = 0, height = 0;
   auto* render_cmd = cli.add_subcommand("render", "Render a scene headless to an image");
@@ -76,6 +92,11 @@ int main(int argc, char** argv) {
     }
     if (*inputs_cmd) return app::run_make_inputs(inputs);
     if (*preview_cmd) return app::run_preview(preview);
+    if (*bake_cmd) {
+      if (*bake_seed_opt) bake.seed = bake_seed;
+      return app::run_bake(bake);
+    }
+    if (*report_cmd) return app::run_report(report);
     if (*render_cmd) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;

@@ -8,7 +8,9 @@
 
 #include "engine/render/contact_sheet.h"
 #include "engine/render/renderer.h"
+#include "generators/bake/pr_tables.h"
 #include "generators/methods/methods.h"
+#include "prune_math.h"
 #include "engine/scene/scene.h"
 
 using namespace forest;
@@ -304,4 +306,68 @@ TEST_F(GpuTest, TurntableFramesTheModel) {
   EXPECT_EQ(sheet.height, 2u * 96u + 3u * 4u);
   EXPECT_EQ(0, std::memcmp(sheet.pixel(4, 4), views[0].pixel(0, 0), 4));
   EXPECT_EQ(0, std::memcmp(sheet.pixel(4 + 96 + 4, 4 + 96 + 4), views[3].pixel(0, 0), 4));
+}
+
+TEST_F(GpuTest, CookLeafCountsMatchCpuReference) {
+  // Every tree visible from above; the GPU's per-tree λ = (1 − d)² and k = ⌈λN⌉ summed must
+  // equal the same arithmetic (shaders/prune_math.h) done here.
+  std::string text = tiny_scene(R"(
+[placement]
+count = 300
+seed = 9
+min_spacing = 2.0
+radius = 60
+)");
+  text.replace(text.find("position = [0, 6, -24]"), 22, "position = [0, 150, -1]");
+  text.replace(text.find("target = [0, 5, 0]"), 18, "target = [0, 0, 0]");
+  text.insert(text.find("samples = 1") + 11, "\nmode = \"cook\"\nprune_distance = 220");
+  Rendered r = render(text);
+  ASSERT_EQ(r.stats.branch_draws, 300u);
+  const TreeModel& m = r.scene.models[0];
+  uint64_t expected = 0;
+  double lambda_sum = 0;
+  for (const gpu::Instance& inst : r.scene.instances) {
+    glm::vec3 c = glm::vec3(inst.position_scale) +
+                  glm::vec3(inst.yaw_cos_sin.x * m.bounding_sphere.x + inst.yaw_cos_sin.y * m.bounding_sphere.z,
+                            m.bounding_sphere.y,
+                            -inst.yaw_cos_sin.y * m.bounding_sphere.x + inst.yaw_cos_sin.x * m.bounding_sphere.z) *
+                      inst.position_scale.w;
+    float d = std::clamp(glm::distance(c, r.scene.desc.camera.position) / 220.0f, 0.0f, 1.0f);
+    float lambda = prune::lambda_cook(d);
+    lambda_sum += lambda;
+    expected += prune::leaf_prefix(lambda, uint32_t(m.leaves.size()));
+  }
+  // ±1 leaf per tree for float rounding differences between the GPU and the CPU.
+  EXPECT_NEAR(double(r.stats.leaves_drawn), double(expected), 300.0);
+  EXPECT_LT(r.stats.leaves_drawn, 300u * m.leaves.size() / 2) << "Cook at d ~ 0.7 should drop most leaves";
+  EXPECT_NEAR(r.stats.mean_lambda, lambda_sum / 300.0, 1e-3);
+}
+
+TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
+  // A model whose tables say λ = 1 and s = 1 everywhere must render exactly like `full`.
+  TreeModel m = broadleaf();
+  PrTables t;
+  t.lambda.assign(S_SAMPLES, 0.0f);
+  t.s_opt.assign(S_SAMPLES, 1.0f);
+  t.q_opt.assign(S_SAMPLES, 1.0f);
+  t.q_inverse.assign(S_SAMPLES, 1.0f);
+  t.d.assign(D_SAMPLES, 0.0f);
+  t.lambda_opt.assign(D_SAMPLES, 1.0f);
+  t.lambda_cook.assign(D_SAMPLES, 1.0f);
+  m.meta["pr_tables"] = to_json(t);
+  std::vector<TreeDesc> trees = {{0, 0.0f, 0.0f, 1.0f, 0.0f}, {0, 5.0f, 20.0f, 1.0f, 30.0f}};
+  Scene s = single_model_scene(m, trees);
+  Renderer r(ctx_, s, 160, 120, 1);
+  FrameSettings full, opt;
+  opt.prune_mode = PRUNE_OPT;
+  FrameImage a, b;
+  FrameStats sa = r.render(s.desc.camera, &a, full), sb = r.render(s.desc.camera, &b, opt);
+  EXPECT_EQ(sa.leaves_drawn, sb.leaves_drawn);
+  EXPECT_EQ(a.rgba, b.rgba);
+  // And tables that halve λ draw half the leaves.
+  t.lambda_opt.assign(D_SAMPLES, 0.5f);
+  m.meta["pr_tables"] = to_json(t);
+  Scene half = single_model_scene(m, trees);
+  Renderer rh(ctx_, half, 160, 120, 1);
+  EXPECT_EQ(rh.render(half.desc.camera, nullptr, opt).leaves_drawn, 2 * prune::leaf_prefix(0.5f, uint32_t(m.leaves.size())));
 }
