@@ -496,6 +496,14 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
     m.nodes.push_back(node);
   }
 
+  // The metaball hull (bake): occlusion sample points live in extras.forest.hull_samples.
+  if (drawable(tree.hull)) {
+    tinygltf::Node hull;
+    hull.name = "hull";
+    hull.mesh = w.add_mesh("hull", tree.hull, w.add_material("hull", glm::vec3(0.5f), false));
+    m.nodes.push_back(hull);
+  }
+
   tinygltf::Scene scene;
   scene.name = "forest";
   scene.nodes.push_back(0);
@@ -562,9 +570,11 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
   tree.leaf_card = Mesh{};
   const tinygltf::Node* branches = nullptr;
   const tinygltf::Node* leaves = nullptr;
+  const tinygltf::Node* hull = nullptr;
   for (const tinygltf::Node& n : model.nodes) {
     if (n.name == "branches" && !branches) branches = &n;
     if (n.name == "leaves" && !leaves) leaves = &n;
+    if (n.name == "hull" && !hull) hull = &n;
   }
   if (!branches) r.fail("no node named 'branches'");
   tree.branches = r.mesh(*branches, &tree.bark_color);
@@ -572,6 +582,10 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
     tree.leaf_card = r.mesh(*leaves, &tree.leaf_color);
     tree.leaves = r.instances(*leaves);
     if (leaves->mesh >= 0) tree.leaf_texture = r.base_color_texture(r.material(model.meshes[size_t(leaves->mesh)]));
+  }
+  if (hull) {
+    glm::vec3 unused;
+    tree.hull = r.mesh(*hull, &unused);
   }
   // Branch LODs: the meshes tagged extras.forest_lod, by level.
   std::vector<std::pair<int, MeshLod>> lods;

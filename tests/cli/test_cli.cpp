@@ -185,3 +185,33 @@ TEST_F(CliTest, RenderWritesPngAndNothingElse) {
   EXPECT_EQ(listing(), (std::vector<std::string>{"frame.png", "ok.toml"}));
   EXPECT_NE(r.out.find("1 trees, 1 visible"), std::string::npos) << r.out;
 }
+
+TEST_F(CliTest, BakeReportAndRenderOpt) {
+  std::string species = kSource + "/scenes/species/broadleaf.toml";
+  fs::path raw = dir_ / "raw.glb", baked = dir_ / "baked.glb", report = dir_ / "report";
+  ASSERT_EQ(run("generate --species '" + species + "' --out '" + raw.string() + "'").code, 0);
+  Result b = run("bake '" + raw.string() + "' --out '" + baked.string() + "' --views 2 --resolution 64 --priority combined");
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.out.find("combined order"), std::string::npos) << b.out;
+  std::string glb = slurp(baked);
+  EXPECT_NE(glb.find("\"pr_tables\""), std::string::npos);
+  EXPECT_NE(glb.find("\"hull\""), std::string::npos);
+  Result r = run("report '" + baked.string() + "' --out '" + report.string() + "'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"pr_diagram.png", "scale_vs_lambda.png", "lambda_vs_distance.png", "scale_table.csv",
+                        "lambda_table.csv", "pr_samples.csv"})
+    EXPECT_GT(fs::file_size(report / f), 100u) << f;
+  // An unbaked model has no tables to report.
+  Result u = run("report '" + raw.string() + "' --out '" + report.string() + "'");
+  EXPECT_EQ(u.code, 2);
+  EXPECT_NE(u.err.find("not baked"), std::string::npos);
+  // The baked model renders in mode opt.
+  fs::path scene = write("opt.toml", "[render]\nwidth = 64\nheight = 48\nmode = \"opt\"\n"
+                                      "[camera]\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
+                                      "[terrain]\nsize = 100\nresolution = 8\n"
+                                      "[[species]]\nmodel = \"" + baked.string() + "\"\n"
+                                      "[[tree]]\nspecies = 0\nx = 0\nz = 0\n");
+  Result o = run("render '" + scene.string() + "' --out '" + (dir_ / "opt.png").string() + "' --stats");
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("1 visible"), std::string::npos) << o.out;
+}
