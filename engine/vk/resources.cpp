@@ -56,8 +56,11 @@ Buffer create_buffer_with_data(Context& ctx, VkBufferUsageFlags usage, std::span
   return b;
 }
 
-Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
-                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples) {
+namespace {
+// A device-local 2D image (array) with its own memory and a view of every mip and layer.
+Image create_image_2d(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                      VkImageAspectFlags aspect, VkSampleCountFlagBits samples, uint32_t mips, uint32_t layers,
+                      VkImageViewType view_type) {
   Image img;
   img.format = format;
   img.extent = extent;
@@ -65,8 +68,8 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
   ici.imageType = VK_IMAGE_TYPE_2D;
   ici.format = format;
   ici.extent = {extent.width, extent.height, 1};
-  ici.mipLevels = 1;
-  ici.arrayLayers = 1;
+  ici.mipLevels = mips;
+  ici.arrayLayers = layers;
   ici.samples = samples;
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = usage;
@@ -81,42 +84,24 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = img.image;
-  vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vci.viewType = view_type;
   vci.format = format;
-  vci.subresourceRange = {aspect, 0, 1, 0, 1};
+  vci.subresourceRange = {aspect, 0, mips, 0, layers};
   VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &img.view));
   return img;
+}
+}  // namespace
+
+Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples) {
+  return create_image_2d(ctx, extent, format, usage, aspect, samples, 1, 1, VK_IMAGE_VIEW_TYPE_2D);
 }
 
 Image create_texture_array(Context& ctx, uint32_t size, uint32_t layers, uint32_t mips, VkFormat format,
                            std::span<const uint8_t> texels) {
-  Image img;
-  img.format = format;
-  img.extent = {size, size};
-  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ici.imageType = VK_IMAGE_TYPE_2D;
-  ici.format = format;
-  ici.extent = {size, size, 1};
-  ici.mipLevels = mips;
-  ici.arrayLayers = layers;
-  ici.samples = VK_SAMPLE_COUNT_1_BIT;
-  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ici.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  VK_CHECK(vkCreateImage(ctx.device, &ici, nullptr, &img.image));
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(ctx.device, img.image, &req);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &img.memory));
-  VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
-  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vci.image = img.image;
-  vci.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-  vci.format = format;
-  vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mips, 0, layers};
-  VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &img.view));
-
+  Image img = create_image_2d(ctx, {size, size}, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                              VK_IMAGE_ASPECT_COLOR_BIT, VK_SAMPLE_COUNT_1_BIT, mips, layers,
+                              VK_IMAGE_VIEW_TYPE_2D_ARRAY);
   Buffer staging = create_buffer(ctx, texels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::upload);
   std::memcpy(staging.mapped, texels.data(), texels.size());
   std::vector<VkBufferImageCopy> regions;
