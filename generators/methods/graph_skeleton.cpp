@@ -65,9 +65,9 @@ SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defau
   l.angle_jitter_deg = float(t.number("leaf_angle_jitter", defaults.leaves.angle_jitter_deg, 0.0, 90.0));
   l.per_tip = int(t.integer("leaves_per_tip", defaults.leaves.per_tip, 0, 16));
   l.along = int(t.integer("leaves_along", defaults.leaves.along, 0, 16));
-  s.mesher.min_sides = int(t.integer("ring_sides_min", defaults.mesher.min_sides, 3, 32));
-  s.mesher.max_sides = int(t.integer("ring_sides_max", defaults.mesher.max_sides, 3, 32));
-  if (s.mesher.max_sides < s.mesher.min_sides) t.fail("ring_sides_max", "must be >= ring_sides_min");
+  s.mesher.min_sides = defaults.mesher.min_sides;
+  s.mesher.max_sides = defaults.mesher.max_sides;
+  read_ring_sides(t, s.mesher);
   s.bark_color = t.vec3("bark_color", defaults.bark_color, 0.0, 1.0);
   s.leaf_color = t.vec3("leaf_color", defaults.leaf_color, 0.0, 1.0);
   return s;

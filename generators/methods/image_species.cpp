@@ -48,9 +48,9 @@ TreeLook read_tree_look(const TomlTable& t, const TreeLook& d) {
   s.leaves.angle_jitter_deg = float(t.number("leaf_angle_jitter", d.leaves.angle_jitter_deg, 0.0, 90.0));
   s.leaves.per_tip = int(t.integer("leaves_per_tip", d.leaves.per_tip, 0, 16));
   s.leaves.along = int(t.integer("leaves_along", d.leaves.along, 0, 16));
-  s.mesher.min_sides = int(t.integer("ring_sides_min", d.mesher.min_sides, 3, 32));
-  s.mesher.max_sides = int(t.integer("ring_sides_max", d.mesher.max_sides, 3, 32));
-  if (s.mesher.max_sides < s.mesher.min_sides) t.fail("ring_sides_max", "must be >= ring_sides_min");
+  s.mesher.min_sides = d.mesher.min_sides;
+  s.mesher.max_sides = d.mesher.max_sides;
+  read_ring_sides(t, s.mesher);
   s.bark_color = t.vec3("bark_color", d.bark_color, 0.0, 1.0);
   s.leaf_color = t.vec3("leaf_color", d.leaf_color, 0.0, 1.0);
   return s;

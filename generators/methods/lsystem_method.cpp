@@ -102,10 +102,9 @@ LSystemSpecies read_species(const TomlTable& t) {
   p.leaf_size_jitter = l.size_jitter;
   p.leaf_color_jitter = l.color_jitter;
 
-  s.mesher.min_sides = int(t.integer("ring_sides_min", 3, 3, 32));
-  s.mesher.max_sides = int(t.integer("ring_sides_max", 8, 3, 32));
-  if (s.mesher.max_sides < s.mesher.min_sides)
-    t.fail("ring_sides_max", "must be >= ring_sides_min");
+  s.mesher.min_sides = 3;
+  s.mesher.max_sides = 8;
+  read_ring_sides(t, s.mesher);
   s.bark_color = t.vec3("bark_color", s.bark_color, 0.0, 1.0);
   s.leaf_color = t.vec3("leaf_color", s.leaf_color, 0.0, 1.0);
 

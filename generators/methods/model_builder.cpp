@@ -1,5 +1,7 @@
 #include "generators/methods/model_builder.h"
 
+#include "generators/common/toml_reader.h"
+
 #include <algorithm>
 #include <sstream>
 
@@ -72,6 +74,12 @@ TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
   m["bounding_sphere"] = {s.x, s.y, s.z, s.w};
   m["height"] = height;
   return model;
+}
+
+void read_ring_sides(const TomlTable& t, MesherParams& mesher) {
+  mesher.min_sides = int(t.integer("ring_sides_min", mesher.min_sides, 3, 32));
+  mesher.max_sides = int(t.integer("ring_sides_max", mesher.max_sides, 3, 32));
+  if (mesher.max_sides < mesher.min_sides) t.fail("ring_sides_max", "must be >= ring_sides_min");
 }
 
 }  // namespace forest

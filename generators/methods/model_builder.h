@@ -12,6 +12,8 @@
 
 namespace forest {
 
+class TomlTable;
+
 struct ModelDescription {
   std::string method;        // method id
   std::string species;       // preset name
@@ -30,6 +32,10 @@ struct ModelDescription {
 // bounding_sphere and height.
 TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& description,
                            const MesherParams& mesher = {});
+
+// Species keys ring_sides_min / ring_sides_max (shared by every method); the current values
+// of `mesher` are the defaults. InputError naming the key when out of range or crossed.
+void read_ring_sides(const TomlTable& species, MesherParams& mesher);
 
 // A TOML table as JSON (dates and times as their TOML text); deterministic key order.
 nlohmann::json toml_to_json(const toml::table& table);

@@ -113,9 +113,9 @@ TreeModel generate_sketch_mrf(const TomlTable& t, const std::string& species_nam
   if (lp.size > 0.0f) place_twig_leaves(graph, lp, seed);
 
   MesherParams mesher;
-  mesher.min_sides = int(t.integer("ring_sides_min", 3, 3, 32));
-  mesher.max_sides = int(t.integer("ring_sides_max", 8, 3, 32));
-  if (mesher.max_sides < mesher.min_sides) t.fail("ring_sides_max", "must be >= ring_sides_min");
+  mesher.min_sides = 3;
+  mesher.max_sides = 8;
+  read_ring_sides(t, mesher);
 
   ModelDescription d;
   d.method = "sketch-mrf";
