@@ -72,4 +72,15 @@ struct RenderArgs {
 };
 int run_render(const RenderArgs& args);
 
+struct CompareArgs {
+  std::string reference;
+  std::string test;
+  std::string diff;                   // Fig 7.1 picture (optional)
+  uint8_t threshold = 128;            // coverage threshold on the brightest channel
+  std::optional<double> min_quality;  // exit 3 when Q falls below it
+};
+// Exit 3 (not 1 or 2) when Q is under --min-quality, so scripts can tell a regression from
+// a bad input.
+int run_compare(const CompareArgs& args);
+
 }  // namespace forest::app

@@ -67,6 +67,15 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--validate", render.validate,
                        "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
 
+  app::CompareArgs compare;
+  double min_quality = 0;
+  auto* compare_cmd = cli.add_subcommand("compare", "Precision, Recall and Q of a coverage image against a reference, with a tp/fp/fn picture");
+  compare_cmd->add_option("reference", compare.reference, "Reference coverage image (full detail)")->required()->check(CLI::ExistingFile);
+  compare_cmd->add_option("test", compare.test, "Test coverage image (pruned)")->required()->check(CLI::ExistingFile);
+  compare_cmd->add_option("--diff", compare.diff, "Write the Fig 7.1 picture: tp light green, fp red, fn dark green");
+  compare_cmd->add_option("--threshold", compare.threshold, "A pixel is covered from this value of its brightest channel")->check(CLI::Range(1, 255));
+  auto* min_quality_opt = compare_cmd->add_option("--min-quality", min_quality, "Exit 3 when Q is below this")->check(CLI::Range(0.0, 1.0));
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -97,6 +106,10 @@ int main(int argc, char** argv) {
       return app::run_bake(bake);
     }
     if (*report_cmd) return app::run_report(report);
+    if (*compare_cmd) {
+      if (*min_quality_opt) compare.min_quality = min_quality;
+      return app::run_compare(compare);
+    }
     if (*render_cmd) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;

@@ -390,6 +390,7 @@ FrameSettings scene_frame_settings(const SceneDesc& desc) {
   FrameSettings s;
   s.prune_mode = desc.prune_mode;
   s.lambda_view = desc.lambda_view;
+  s.mask = desc.mask_view;
   return s;
 }
 

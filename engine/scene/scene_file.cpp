@@ -39,7 +39,9 @@ void read_render(const TomlTable& t, SceneDesc& s) {
   s.prune_mode = mode == "cook" ? PRUNE_COOK : mode == "opt" ? PRUNE_OPT : PRUNE_FULL;
   s.prune_distance = float(t.number("prune_distance", s.prune_distance, 1e-2, kBig));
   s.transition = float(t.number("transition", s.transition, 0.0, 1.0));
-  s.lambda_view = t.choice("view", "shaded", {"shaded", "lambda"}) == "lambda";
+  std::string view = t.choice("view", "shaded", {"shaded", "lambda", "mask"});
+  s.lambda_view = view == "lambda";
+  s.mask_view = view == "mask";
 }
 
 void read_camera(const TomlTable& t, CameraDesc& c) {

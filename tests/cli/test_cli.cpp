@@ -215,3 +215,42 @@ TEST_F(CliTest, BakeReportAndRenderOpt) {
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("1 visible"), std::string::npos) << o.out;
 }
+
+TEST_F(CliTest, CompareMaskRendersOfFullAndCook) {
+  std::string tree = "[[tree]]\nspecies = 0\nx = 0\nz = 0\n";
+  auto mask_scene = [&](const std::string& name, const std::string& mode) {
+    std::string text = scene_with(tree);
+    text.insert(text.find("[camera]"), "view = \"mask\"\nmode = \"" + mode + "\"\nprune_distance = 40\n");
+    return write(name, text);
+  };
+  fs::path full = dir_ / "full.png", cook = dir_ / "cook.png", diff = dir_ / "diff.png";
+  ASSERT_EQ(run("render '" + mask_scene("full.toml", "full").string() + "' --out '" + full.string() + "'").code, 0);
+  ASSERT_EQ(run("render '" + mask_scene("cook.toml", "cook").string() + "' --out '" + cook.string() + "'").code, 0);
+
+  Result same = run("compare '" + full.string() + "' '" + full.string() + "' --min-quality 1");
+  ASSERT_EQ(same.code, 0) << same.err;
+  EXPECT_NE(same.out.find("Q 1.0000"), std::string::npos) << same.out;
+
+  // Cook at d = 0.6 keeps 16 % of the leaves scaled by 6.25: a visible difference.
+  Result pruned = run("compare '" + full.string() + "' '" + cook.string() + "' --diff '" + diff.string() + "'");
+  ASSERT_EQ(pruned.code, 0) << pruned.err;
+  double p = 0, r = 0, q = 0;
+  ASSERT_EQ(std::sscanf(pruned.out.c_str(), "P %lf R %lf Q %lf", &p, &r, &q), 3) << pruned.out;
+  EXPECT_LT(q, 0.99);
+  EXPECT_GT(q, 0.0);
+  EXPECT_GT(fs::file_size(diff), 100u);
+  Result below = run("compare '" + full.string() + "' '" + cook.string() + "' --min-quality 0.999");
+  EXPECT_EQ(below.code, 3);
+  EXPECT_EQ(lines(below.err), 1u) << below.err;
+
+  // Different sizes: one line naming both files, exit 2.
+  fs::path small = dir_ / "small.png";
+  ASSERT_EQ(run("render '" + mask_scene("small.toml", "full").string() + "' --width 32 --out '" + small.string() + "'").code, 0);
+  Result bad = run("compare '" + full.string() + "' '" + small.string() + "'");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(lines(bad.err), 1u) << bad.err;
+  EXPECT_NE(bad.err.find("small.png"), std::string::npos) << bad.err;
+  // A corrupt PNG is an input error too.
+  fs::path corrupt = write("corrupt.png", "\x89PNG not really");
+  EXPECT_EQ(run("compare '" + full.string() + "' '" + corrupt.string() + "'").code, 2);
+}
