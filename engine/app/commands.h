@@ -72,4 +72,17 @@ struct RenderArgs {
 };
 int run_render(const RenderArgs& args);
 
+struct WalkArgs {
+  std::string scene;
+  std::string device;
+  std::optional<uint32_t> width, height;  // render resolution (and first window size)
+  std::optional<uint32_t> frames;         // scripted: quit after N frames, fixed 1/30 s steps
+  std::string screenshot;                 // with --frames: the last frame; else the [C] key's file
+  bool fly = false;                       // scripted camera move: forward while turning
+  std::optional<uint32_t> resize_at;      // scripted window resize at this frame
+  bool no_hud = false;
+  bool validate = false;
+};
+int run_walk(const WalkArgs& args);
+
 }  // namespace forest::app
