@@ -112,19 +112,20 @@ std::string format(const char* fmt, auto... values) {
 }
 
 std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, const FlyCamera& cam, double fps,
-                                   double cpu_ms, const char* device) {
+                                   double cpu_ms, std::string device) {
+  device = device.substr(0, device.find(" ("));  // "llvmpipe (LLVM 15.0.6, 256 bits)" -> "llvmpipe"
   const FrameSettings& f = s.settings;
   std::vector<std::string> lines = {
-      format("forest walk  %.0f fps  %.1f ms per frame  %s", fps, cpu_ms, device),
-      format("GPU ms: cull %.2f  draw %.2f  frame %.2f", st.cull_ms, st.draw_ms, st.frame_ms),
-      format("trees %u visible of %u   branch triangles %u   leaves drawn %u   mean lambda %.3f", st.branch_draws,
-             st.instances, st.branch_triangles, st.leaves_drawn, st.mean_lambda),
-      format("[1-3] prune %s  [O] occlusion %s (not merged yet)  [L] %s view  [F] wireframe %s",
-             prune_name(f.prune_mode), f.occlusion ? "on" : "off", f.lambda_view ? "lambda" : "shaded",
+      format("%.1f fps  %.1f ms  %s", fps, cpu_ms, device.c_str()),
+      format("GPU ms: cull %.2f draw %.2f frame %.2f", st.cull_ms, st.draw_ms, st.frame_ms),
+      format("trees %u/%u  branch tris %u", st.branch_draws, st.instances, st.branch_triangles),
+      format("leaves %u  mean lambda %.3f", st.leaves_drawn, st.mean_lambda),
+      format("[1-3] prune %s  [L] %s  [F] wire %s", prune_name(f.prune_mode), f.lambda_view ? "lambda" : "shaded",
              f.wireframe ? "on" : "off"),
-      format("pos %.0f %.0f %.0f  speed %.1f m/s (wheel)  [P] path %s  [C] screenshot  [H] hud", cam.position.x,
-             cam.position.y, cam.position.z, cam.speed,
+      // Occlusion feedback is written in parallel; the renderer ignores the flag until merged.
+      format("[O] occlusion %s (n/a)  [P] path %s", f.occlusion ? "on" : "off",
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),
+      format("%.0f %.0f %.0f  %.1f m/s  [C] shot", cam.position.x, cam.position.y, cam.position.z, cam.speed),
   };
   if (!s.message.empty() && s.now - s.message_time < 4.0) lines.push_back(s.message);
   return lines;
