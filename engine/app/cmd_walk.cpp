@@ -116,7 +116,7 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
   device = device.substr(0, device.find(" ("));  // "llvmpipe (LLVM 15.0.6, 256 bits)" -> "llvmpipe"
   const FrameSettings& f = s.settings;
   std::vector<std::string> lines = {
-      format("%.1f fps  %.1f ms  %s", fps, cpu_ms, device.c_str()),
+      format("%.3g fps  %.1f ms  %s", fps, cpu_ms, device.c_str()),
       format("GPU ms: cull %.2f draw %.2f frame %.2f", st.cull_ms, st.draw_ms, st.frame_ms),
       format("trees %u/%u  branch tris %u", st.branch_draws, st.instances, st.branch_triangles),
       format("leaves %u  mean lambda %.3f", st.leaves_drawn, st.mean_lambda),
@@ -159,6 +159,17 @@ void wait_for_framebuffer(GLFWwindow* window, VkExtent2D wanted) {
     glfwWaitEventsTimeout(0.02);
   }
 }
+
+// Presenter and swapchain are released before the renderer and the context, also on errors.
+struct PresentTargets {
+  vk::Context& ctx;
+  vk::Swapchain swapchain;
+  Presenter presenter;
+  ~PresentTargets() {
+    destroy_presenter(ctx, presenter);
+    vk::destroy_swapchain(ctx, swapchain);
+  }
+};
 
 struct Window {
   GLFWwindow* window = nullptr;
@@ -223,8 +234,9 @@ int run_walk(const WalkArgs& args) {
     CameraPlayback playback = scene_camera_playback(scene);
     state.playback_available = bool(playback.at);
 
-    vk::Swapchain swapchain;
-    Presenter presenter;
+    PresentTargets targets{ctx, {}, {}};
+    vk::Swapchain& swapchain = targets.swapchain;
+    Presenter& presenter = targets.presenter;
     create_presenter(ctx, presenter, renderer.color_image().format, kMaxOverlayBytes);
     bool hud_bgra = false;
     bool have_swapchain = false;
@@ -322,8 +334,6 @@ int run_walk(const WalkArgs& args) {
       }
     }
     double seconds = std::chrono::duration<double>(clock::now() - start).count();
-    destroy_presenter(ctx, presenter);
-    vk::destroy_swapchain(ctx, swapchain);
     std::printf("walk: %u frames in %.2f s (%.1f fps) on %s; swapchain created %u time(s); last frame: %u trees, "
                 "%u visible, %u leaves drawn, mean lambda %.3f\n",
                 frame, seconds, frame / std::max(seconds, 1e-9), ctx.properties.deviceName, swapchain.generation,
