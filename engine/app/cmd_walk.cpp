@@ -237,7 +237,7 @@ int run_walk(const WalkArgs& args) {
     PresentTargets targets{ctx, {}, {}};
     vk::Swapchain& swapchain = targets.swapchain;
     Presenter& presenter = targets.presenter;
-    create_presenter(ctx, presenter, renderer.color_image().format, kMaxOverlayBytes);
+    create_presenter(ctx, presenter, renderer.color_image(), kMaxOverlayBytes);
     bool hud_bgra = false;
     bool have_swapchain = false;
     FlyCamera camera = fly_camera_from(desc.camera);
@@ -262,8 +262,12 @@ int run_walk(const WalkArgs& args) {
         have_swapchain = vk::create_swapchain(ctx, swapchain, fb);
         if (!have_swapchain) continue;
         std::string why;
-        if (!can_present(ctx, renderer.color_image().format, swapchain.format, &why))
-          throw vk::VkFailure("cannot show frames in this window: " + why);
+        bool blit = can_present(ctx, renderer.color_image().format, swapchain.format, &why);
+        if (args.present == "blit" && !blit) throw vk::VkFailure("--present blit: " + why);
+        bool pass = args.present == "pass" || !blit;
+        if (pass && !presenter.copy_pass && args.present != "pass")
+          std::fprintf(stderr, "forest: %s; using the copy pass\n", why.c_str());
+        presenter.copy_pass = pass;
         if (!overlay_byte_order(swapchain.format, &hud_bgra)) state.hud = false;  // HUD needs 8-bit RGBA/BGRA
       }
 

@@ -82,6 +82,7 @@ struct WalkArgs {
   std::optional<uint32_t> resize_at;      // scripted window resize at this frame
   bool no_hud = false;
   bool validate = false;
+  std::string present = "auto";  // auto | blit | pass (the copy pass, where blits are unsupported)
 };
 int run_walk(const WalkArgs& args);
 

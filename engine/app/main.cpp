@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
   auto* walk_resize_opt = walk_cmd->add_option("--resize-at", walk_resize_at, "Scripted: resize the window at this frame")
                               ->check(CLI::Range(0, 1000000));
   walk_cmd->add_flag("--no-hud", walk.no_hud, "Start with the HUD hidden ([H] toggles)");
+  walk_cmd->add_option("--present", walk.present, "Copy to the window by blit, or by a shader pass (auto: blit where supported)")
+      ->check(CLI::IsMember({"auto", "blit", "pass"}));
   walk_cmd->add_flag("--validate", walk.validate,
                      "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
 

@@ -1,6 +1,7 @@
 // Present step of `forest walk`: the renderer keeps rendering into its own image; this
 // copies that image into a swapchain image (blit, scaled to fit with the aspect kept, bars
-// cleared), puts the HUD panel over its top-left corner and presents. Two frames in flight,
+// cleared; or, where the window's format cannot be blitted to, a full-screen-triangle copy
+// pass that samples it), puts the HUD panel over its top-left corner and presents. Two frames in flight,
 // each with its own command buffer, fence, acquire semaphore and HUD upload buffer.
 #pragma once
 #include <cstdint>
@@ -25,14 +26,25 @@ struct Presenter {
   uint32_t frame = 0;  // frames presented so far; frames[frame % kFramesInFlight] is next
   vk::Buffer readback;  // screenshots of the swapchain image
   bool linear_blit = false;  // source format can be filtered when scaled
+
+  // Copy pass (shaders/present.*), used instead of the blit when `copy_pass` is set.
+  bool copy_pass = false;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkFormat pipeline_format = VK_FORMAT_UNDEFINED;
 };
 
 // `max_overlay_bytes`: the largest OverlayImage ever passed to present().
-void create_presenter(vk::Context& ctx, Presenter& presenter, VkFormat source_format, VkDeviceSize max_overlay_bytes);
+// `source`: the image present() will be given (the renderer's; read by the copy pass).
+void create_presenter(vk::Context& ctx, Presenter& presenter, const vk::Image& source, VkDeviceSize max_overlay_bytes);
 void destroy_presenter(vk::Context& ctx, Presenter& presenter);
 
-// Whether the present step can write `swapchain_format` (blit destination) from
-// `source_format`; when not, the message says why.
+// Whether a blit can write `swapchain_format` from `source_format`; when not, the message
+// says why and the copy pass must be used.
 bool can_present(vk::Context& ctx, VkFormat source_format, VkFormat swapchain_format, std::string* why);
 // Whether an OverlayImage can be copied as raw bytes into images of this format.
 bool overlay_byte_order(VkFormat swapchain_format, bool* bgra);

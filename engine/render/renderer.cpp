@@ -117,8 +117,10 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
                                  storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  vk::MemoryUse::device);
   pr_readback_ = vk::create_buffer(ctx, sizeof(gpu::PrCounts), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
+  // Sampled: forest walk's copy pass reads it when the window's format cannot be blitted to.
   color_ = vk::create_image(ctx, {width, height}, kColorFormat,
-                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                            VK_IMAGE_ASPECT_COLOR_BIT);
   if (samples_ > VK_SAMPLE_COUNT_1_BIT)
     color_msaa_ = vk::create_image(ctx, {width, height}, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_COLOR_BIT, samples_);

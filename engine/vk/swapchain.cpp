@@ -46,7 +46,8 @@ bool create_swapchain(Context& ctx, Swapchain& sc, VkExtent2D framebuffer) {
   ci.imageColorSpace = format.colorSpace;
   ci.imageExtent = extent;
   ci.imageArrayLayers = 1;
-  ci.imageUsage = needed | (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  // COLOR_ATTACHMENT is always supported; the copy pass renders into the images.
+  ci.imageUsage = needed | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.preTransform = (caps.supportedTransforms & VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR)
                         ? VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR
@@ -77,6 +78,14 @@ bool create_swapchain(Context& ctx, Swapchain& sc, VkExtent2D framebuffer) {
   VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, created, &n, nullptr));
   sc.images.resize(n);
   VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, created, &n, sc.images.data()));
+  for (VkImage image : sc.images) {
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = image;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = sc.format;
+    vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &sc.views.emplace_back()));
+  }
   sc.ready_to_present.resize(n);
   VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   for (VkSemaphore& s : sc.ready_to_present) VK_CHECK(vkCreateSemaphore(ctx.device, &sci, nullptr, &s));
@@ -86,6 +95,8 @@ bool create_swapchain(Context& ctx, Swapchain& sc, VkExtent2D framebuffer) {
 void destroy_swapchain(Context& ctx, Swapchain& sc) {
   for (VkSemaphore s : sc.ready_to_present) vkDestroySemaphore(ctx.device, s, nullptr);
   sc.ready_to_present.clear();
+  for (VkImageView v : sc.views) vkDestroyImageView(ctx.device, v, nullptr);
+  sc.views.clear();
   sc.images.clear();
   if (sc.swapchain) vkDestroySwapchainKHR(ctx.device, sc.swapchain, nullptr);
   sc.swapchain = VK_NULL_HANDLE;

@@ -13,6 +13,7 @@ struct Swapchain {
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{};
   std::vector<VkImage> images;
+  std::vector<VkImageView> views;  // for the copy pass (render into the image)
   // One per image: signalled by the frame's submit, waited on by present. Per image (not
   // per frame in flight) because an image's previous present may still hold its semaphore.
   std::vector<VkSemaphore> ready_to_present;

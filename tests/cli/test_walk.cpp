@@ -104,22 +104,28 @@ TEST_F(WalkTest, ScriptedWalkResizesAndShowsSkyTerrainTreesAndHud) {
 }
 
 // Without moving and without the HUD, the window shows exactly what `forest render` writes:
-// the present step copies the renderer's image 1:1 (sRGB to sRGB blit at the same size).
-TEST_F(WalkTest, UntouchedFrameEqualsOffscreenRender) {
+// both present paths copy the renderer's image 1:1 at the same size (the blit sRGB to sRGB,
+// the copy pass by sampling texel centers and re-encoding).
+TEST_F(WalkTest, UntouchedFrameEqualsOffscreenRenderByBlitAndByCopyPass) {
   fs::path scene = dir_ / "walk.toml";
   std::ofstream(scene) << light_scene("shaded");
-  ASSERT_EQ(run("walk '" + scene.string() + "' --frames 2 --no-hud --screenshot '" + (dir_ / "w.png").string() +
-                "' --validate"),
-            0)
-      << err_;
   ASSERT_EQ(run("render '" + scene.string() + "' --out '" + (dir_ / "r.png").string() + "'", false), 0) << err_;
-  forest::FrameImage w = forest::read_image(dir_ / "w.png"), r = forest::read_image(dir_ / "r.png");
-  ASSERT_EQ(w.width, r.width);
-  ASSERT_EQ(w.height, r.height);
-  size_t differ = 0;
-  for (size_t i = 0; i < w.rgba.size(); i += 4)
-    differ += w.rgba[i] != r.rgba[i] || w.rgba[i + 1] != r.rgba[i + 1] || w.rgba[i + 2] != r.rgba[i + 2];
-  EXPECT_EQ(differ, 0u);
+  forest::FrameImage r = forest::read_image(dir_ / "r.png");
+  for (const char* present : {"blit", "pass"}) {
+    SCOPED_TRACE(present);
+    fs::path shot = dir_ / (std::string(present) + ".png");
+    ASSERT_EQ(run("walk '" + scene.string() + "' --frames 2 --no-hud --present " + present + " --screenshot '" +
+                  shot.string() + "' --validate"),
+              0)
+        << err_;
+    forest::FrameImage w = forest::read_image(shot);
+    ASSERT_EQ(w.width, r.width);
+    ASSERT_EQ(w.height, r.height);
+    size_t differ = 0;
+    for (size_t i = 0; i < w.rgba.size(); i += 4)
+      differ += w.rgba[i] != r.rgba[i] || w.rgba[i + 1] != r.rgba[i + 1] || w.rgba[i + 2] != r.rgba[i + 2];
+    EXPECT_EQ(differ, 0u);
+  }
 }
 
 TEST_F(WalkTest, BadSceneExitsTwoBeforeOpeningAWindow) {
