@@ -82,5 +82,18 @@ struct CompareArgs {
 // Exit 3 (not 1 or 2) when Q is under --min-quality, so scripts can tell a regression from
 // a bad input.
 int run_compare(const CompareArgs& args);
+struct WalkArgs {
+  std::string scene;
+  std::string device;
+  std::optional<uint32_t> width, height;  // render resolution (and first window size)
+  std::optional<uint32_t> frames;         // scripted: quit after N frames, fixed 1/30 s steps
+  std::string screenshot;                 // with --frames: the last frame; else the [C] key's file
+  bool fly = false;                       // scripted camera move: forward while turning
+  std::optional<uint32_t> resize_at;      // scripted window resize at this frame
+  bool no_hud = false;
+  bool validate = false;
+  std::string present = "auto";  // auto | blit | pass (the copy pass, where blits are unsupported)
+};
+int run_walk(const WalkArgs& args);
 
 }  // namespace forest::app

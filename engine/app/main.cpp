@@ -75,6 +75,24 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--diff", compare.diff, "Write the Fig 7.1 picture: tp light green, fp red, fn dark green");
   compare_cmd->add_option("--threshold", compare.threshold, "A pixel is covered from this value of its brightest channel")->check(CLI::Range(1, 255));
   auto* min_quality_opt = compare_cmd->add_option("--min-quality", min_quality, "Exit 3 when Q is below this")->check(CLI::Range(0.0, 1.0));
+  app::WalkArgs walk;
+  uint32_t walk_width = 0, walk_height = 0, walk_frames = 0, walk_resize_at = 0;
+  auto* walk_cmd = cli.add_subcommand("walk", "Walk through a scene in a window (fly camera, HUD, prune modes)");
+  walk_cmd->add_option("scene", walk.scene, "Scene file (TOML)")->required();
+  walk_cmd->add_option("--device", walk.device, "Device index or name substring");
+  auto* walk_width_opt = walk_cmd->add_option("--width", walk_width, "Override [render].width")->check(CLI::Range(16, 8192));
+  auto* walk_height_opt = walk_cmd->add_option("--height", walk_height, "Override [render].height")->check(CLI::Range(16, 8192));
+  auto* walk_frames_opt = walk_cmd->add_option("--frames", walk_frames, "Quit after N frames (scripted run, fixed 1/30 s steps)")
+                              ->check(CLI::Range(1, 1000000));
+  walk_cmd->add_option("--screenshot", walk.screenshot, "PNG of the last frame with --frames; else where [C] writes");
+  walk_cmd->add_flag("--fly", walk.fly, "Scripted camera move: fly forward while turning");
+  auto* walk_resize_opt = walk_cmd->add_option("--resize-at", walk_resize_at, "Scripted: resize the window at this frame")
+                              ->check(CLI::Range(0, 1000000));
+  walk_cmd->add_flag("--no-hud", walk.no_hud, "Start with the HUD hidden ([H] toggles)");
+  walk_cmd->add_option("--present", walk.present, "Copy to the window by blit, or by a shader pass (auto: blit where supported)")
+      ->check(CLI::IsMember({"auto", "blit", "pass"}));
+  walk_cmd->add_flag("--validate", walk.validate,
+                     "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
 
   try {
     cli.parse(argc, argv);
@@ -114,6 +132,13 @@ int main(int argc, char** argv) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;
       return app::run_render(render);
+    }
+    if (*walk_cmd) {
+      if (*walk_width_opt) walk.width = walk_width;
+      if (*walk_height_opt) walk.height = walk_height;
+      if (*walk_frames_opt) walk.frames = walk_frames;
+      if (*walk_resize_opt) walk.resize_at = walk_resize_at;
+      return app::run_walk(walk);
     }
   } catch (const InputError& e) {
     std::fprintf(stderr, "forest: %s\n", e.what());

@@ -117,8 +117,10 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
                                  storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  vk::MemoryUse::device);
   pr_readback_ = vk::create_buffer(ctx, sizeof(gpu::PrCounts), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
+  // Sampled: forest walk's copy pass reads it when the window's format cannot be blitted to.
   color_ = vk::create_image(ctx, {width, height}, kColorFormat,
-                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                            VK_IMAGE_ASPECT_COLOR_BIT);
   if (samples_ > VK_SAMPLE_COUNT_1_BIT)
     color_msaa_ = vk::create_image(ctx, {width, height}, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_COLOR_BIT, samples_);
@@ -232,6 +234,15 @@ void Renderer::create_pipelines() {
   leaves.alpha_to_coverage = samples_ > VK_SAMPLE_COUNT_1_BIT;
   leaves.fragment_constants = {1u, leaves.alpha_to_coverage ? 1u : 0u};  // LEAF, ALPHA_TO_COVERAGE
   leaves_pipeline_ = vk::create_graphics_pipeline(ctx_, layout_, leaves);
+  if (ctx_.fill_mode_non_solid) {  // wireframe view: same shaders, edges only, no leaf alpha test
+    terrain.polygon_mode = branches.polygon_mode = VK_POLYGON_MODE_LINE;
+    terrain.cull = branches.cull = VK_CULL_MODE_NONE;
+    terrain_wire_ = vk::create_graphics_pipeline(ctx_, layout_, terrain);
+    branches_wire_ = vk::create_graphics_pipeline(ctx_, layout_, branches);
+    vk::GraphicsPipelineDesc leaves_wire = branches;
+    leaves_wire.vertex = "leaf_vert";
+    leaves_wire_ = vk::create_graphics_pipeline(ctx_, layout_, leaves_wire);
+  }
 }
 
 Renderer::~Renderer() {
@@ -240,7 +251,8 @@ Renderer::~Renderer() {
   vkDestroyFence(dev, fence_, nullptr);
   vkFreeCommandBuffers(dev, ctx_.command_pool, 1, &cmd_);
   vkDestroyQueryPool(dev, timestamps_, nullptr);
-  for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_}) vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_, terrain_wire_, branches_wire_, leaves_wire_})
+    vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, pool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
@@ -333,20 +345,21 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   if (!mask) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_);
     vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframe_ ? terrain_wire_ : terrain_);
     vkCmdDrawIndexed(cmd, terrain_index_count_, 1, 0, 0, 0);
   }
 
   if (instance_count_ > 0) {
     const uint32_t stride = sizeof(gpu::DrawCommand);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, branches_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframe_ ? branches_wire_ : branches_);
     vkCmdDrawIndexedIndirectCount(cmd, commands_.buffer, 0, counts_.buffer, offsetof(gpu::DrawCounts, branch_draws),
                                   instance_count_, stride);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, leaves_pipeline_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframe_ ? leaves_wire_ : leaves_pipeline_);
     vkCmdDrawIndexedIndirectCount(cmd, commands_.buffer, VkDeviceSize(instance_count_) * stride, counts_.buffer,
                                   offsetof(gpu::DrawCounts, leaf_draws), instance_count_, stride);
   }
   vkCmdEndRendering(cmd);
+  color_layout_ = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, timestamps_, 2);
 
   // ---- readback: statistics always, pixels when asked ----
@@ -364,6 +377,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
                       : output == Output::reference ? coverage_reference_.buffer
                                                     : coverage_test_.buffer;
     vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, 1, &region);
+    color_layout_ = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
   }
   if (output == Output::compare) {
     vkCmdFillBuffer(cmd, pr_counts_.buffer, 0, sizeof(gpu::PrCounts), 0);
@@ -451,6 +465,7 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   std::memcpy(frame_.mapped, &fd, sizeof(fd));
 
   VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+  wireframe_ = settings.wireframe && has_wireframe() && !settings.mask;
   record(cmd_, output, settings.mask);
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd_;

@@ -24,6 +24,12 @@ struct FrameSettings {
   float fixed_scale = 1.0f;   // PRUNE_FIXED: leaf area scale s
   bool mask = false;          // coverage only: trees white on black, no sky or terrain
   bool lambda_view = false;
+  // Triangle edges instead of filled triangles (terrain, bark, leaf cards); ignored when the
+  // device lacks fillModeNonSolid (Renderer::has_wireframe()).
+  bool wireframe = false;
+  // Occlusion feedback (DESIGN.md "GPU pruning"). The renderer ignores it until occlusion
+  // feedback is merged; `forest walk` already binds a key to it.
+  bool occlusion = true;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -93,6 +99,12 @@ class Renderer {
 
  public:
   uint32_t samples() const { return uint32_t(samples_); }
+  bool has_wireframe() const { return terrain_wire_ != VK_NULL_HANDLE; }
+  // The resolved colour image of the last frame (sRGB, width × height) and the layout the
+  // last render() left it in, for a present step that copies it to a window (forest walk).
+  // The next render() discards its contents; reads must be ordered before it on the queue.
+  const vk::Image& color_image() const { return color_; }
+  VkImageLayout color_layout() const { return color_layout_; }
 
  private:
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
@@ -101,6 +113,9 @@ class Renderer {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
   VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE, pr_count_ = VK_NULL_HANDLE;
+  VkPipeline terrain_wire_ = VK_NULL_HANDLE, branches_wire_ = VK_NULL_HANDLE, leaves_wire_ = VK_NULL_HANDLE;
+  bool wireframe_ = false;  // this frame draws with the *_wire_ pipelines
+  VkImageLayout color_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
   VkQueryPool timestamps_ = VK_NULL_HANDLE;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;

@@ -166,6 +166,7 @@ void create_context(Context& ctx, const ContextOptions& options) {
     layers.push_back("VK_LAYER_KHRONOS_validation");
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
+  extensions.insert(extensions.end(), options.instance_extensions.begin(), options.instance_extensions.end());
   VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -192,6 +193,7 @@ void create_context(Context& ctx, const ContextOptions& options) {
     VK_CHECK(create(ctx.instance, &messenger_info, nullptr, &ctx.messenger));
   }
 
+  if (options.create_surface) ctx.surface = options.create_surface(ctx.instance);
   ctx.device_index = choose_device(ctx.instance, options.device);
   ctx.physical = physical_devices(ctx.instance)[ctx.device_index];
   vkGetPhysicalDeviceProperties(ctx.physical, &ctx.properties);
@@ -209,11 +211,16 @@ void create_context(Context& ctx, const ContextOptions& options) {
   std::vector<VkQueueFamilyProperties> families(nq);
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical, &nq, families.data());
   bool found = false;
-  for (uint32_t i = 0; i < nq && !found; ++i)
+  for (uint32_t i = 0; i < nq && !found; ++i) {
+    VkBool32 present = VK_TRUE;  // headless: nothing to present to
+    if (ctx.surface) VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical, i, ctx.surface, &present));
     if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
-        families[i].timestampValidBits > 0)
+        families[i].timestampValidBits > 0 && present)
       ctx.queue_family = i, found = true;
-  if (!found) throw VkFailure("no graphics+compute queue with timestamps on the chosen device");
+  }
+  if (!found)
+    throw VkFailure(ctx.surface ? "no graphics+compute queue with timestamps that can present to the window"
+                                : "no graphics+compute queue with timestamps on the chosen device");
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -233,10 +240,17 @@ void create_context(Context& ctx, const ContextOptions& options) {
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
   features.features.multiDrawIndirect = VK_TRUE;
   features.features.drawIndirectFirstInstance = VK_TRUE;
+  VkPhysicalDeviceFeatures available{};
+  vkGetPhysicalDeviceFeatures(ctx.physical, &available);
+  ctx.fill_mode_non_solid = available.fillModeNonSolid;  // optional: only the wireframe view uses it
+  features.features.fillModeNonSolid = available.fillModeNonSolid;
 
+  const char* swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
+  dci.enabledExtensionCount = ctx.surface ? 1 : 0;
+  dci.ppEnabledExtensionNames = &swapchain_extension;
   VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
 
@@ -257,7 +271,9 @@ void destroy_context(Context& ctx) {
         vkGetInstanceProcAddr(ctx.instance, "vkDestroyDebugUtilsMessengerEXT"));
     destroy(ctx.instance, ctx.messenger, nullptr);
   }
+  if (ctx.surface) vkDestroySurfaceKHR(ctx.instance, ctx.surface, nullptr);
   if (ctx.instance) vkDestroyInstance(ctx.instance, nullptr);
+  ctx.surface = VK_NULL_HANDLE;
   ctx.device = VK_NULL_HANDLE;
   ctx.instance = VK_NULL_HANDLE;
   ctx.messenger = VK_NULL_HANDLE;

@@ -2,6 +2,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,11 @@ struct ContextOptions {
   bool validation = false;
   // Device index or case-insensitive name substring; empty = FOREST_DEVICE, then discrete first.
   std::string device;
+  // Windowed use (forest walk): instance extensions the window system needs and a function
+  // that makes the window's surface. The chosen queue must then also present to it, and the
+  // device gets VK_KHR_swapchain. Empty = headless.
+  std::vector<const char*> instance_extensions;
+  std::function<VkSurfaceKHR(VkInstance)> create_surface;
 };
 
 struct DeviceReport {
@@ -45,6 +51,8 @@ struct Context {
   VkPhysicalDeviceMemoryProperties memory{};
   uint32_t device_index = 0;
   bool validation = false;
+  VkSurfaceKHR surface = VK_NULL_HANDLE;  // windowed contexts only; destroyed with the context
+  bool fill_mode_non_solid = false;       // enabled when the device has it (wireframe view)
   // Validation messages of severity warning or error seen so far (tests assert 0).
   std::atomic<uint32_t> validation_messages{0};
   std::string last_validation_message;

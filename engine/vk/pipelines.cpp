@@ -51,7 +51,7 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
   VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.polygonMode = desc.polygon_mode;
   raster.cullMode = desc.cull;
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;

@@ -26,6 +26,7 @@ struct GraphicsPipelineDesc {
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   bool alpha_to_coverage = false;
+  VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;  // LINE needs Context::fill_mode_non_solid
   // Fragment-stage specialization constants, constant_id = index (shader variants).
   std::vector<uint32_t> fragment_constants;
 };
