@@ -27,7 +27,8 @@ struct GenerateArgs {
   std::string species;
   std::string method;
   std::optional<uint64_t> seed;
-  std::string out;
+  std::string out;  // .glb (may be empty when svg is given)
+  std::string svg;  // magnetic only: the 2D curves as SVG
 };
 int run_generate(const GenerateArgs& args);
 

@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
   gen_cmd->add_option("--species", gen.species, "Species preset (TOML)")->check(CLI::ExistingFile);
   gen_cmd->add_option("--method", gen.method, "Modeling method id (uses its built-in preset without --species)");
   auto* seed_opt = gen_cmd->add_option("--seed", gen_seed, "Random seed (overrides the preset's)");
-  gen_cmd->add_option("--out", gen.out, "Output .glb")->required();
+  gen_cmd->add_option("--out", gen.out, "Output .glb");
+  gen_cmd->add_option("--svg", gen.svg, "Also write the 2D curves as SVG (method magnetic, mode 2d)");
 
   app::MakeInputsArgs inputs;
   auto* inputs_cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
