@@ -46,6 +46,15 @@ struct PreviewArgs {
 };
 int run_preview(const PreviewArgs& args);
 
+struct GalleryArgs {
+  std::string out;
+  std::string species_dir = "scenes/species";
+  uint32_t size = 256;
+  uint32_t columns = 0;  // 0: about square
+  std::string device;
+};
+int run_gallery(const GalleryArgs& args);
+
 struct BakeArgs {
   std::string model;
   std::string out;            // empty: bake in place

@@ -40,6 +40,14 @@ int main(int argc, char** argv) {
   preview_cmd->add_option("--views", preview.views, "Number of views around the model")->check(CLI::Range(1, 64));
   preview_cmd->add_option("--device", preview.device, "Device index or name substring");
 
+  app::GalleryArgs gallery;
+  auto* gallery_cmd = cli.add_subcommand("gallery", "Render every species preset into one labelled contact sheet");
+  gallery_cmd->add_option("--out", gallery.out, "Output image (.png)")->required();
+  gallery_cmd->add_option("--species-dir", gallery.species_dir, "Folder of species presets (default: scenes/species)");
+  gallery_cmd->add_option("--size", gallery.size, "Pixels per preset")->check(CLI::Range(32, 2048));
+  gallery_cmd->add_option("--columns", gallery.columns, "Presets per row (default: about square)")->check(CLI::Range(1, 64));
+  gallery_cmd->add_option("--device", gallery.device, "Device index or name substring");
+
   app::BakeArgs bake;
   uint64_t bake_seed = 0;
   auto* bake_cmd = cli.add_subcommand("bake", "Add the metaball hull, priority-sorted leaves and PR-measured lambda/scale tables to a model");
@@ -93,6 +101,7 @@ int main(int argc, char** argv) {
     }
     if (*inputs_cmd) return app::run_make_inputs(inputs);
     if (*preview_cmd) return app::run_preview(preview);
+    if (*gallery_cmd) return app::run_gallery(gallery);
     if (*bake_cmd) {
       if (*bake_seed_opt) bake.seed = bake_seed;
       return app::run_bake(bake);

@@ -301,3 +301,19 @@ TEST_F(CliTest, GenerateSvgNeedsPlanarCurves) {
   EXPECT_EQ(run("generate --method magnetic").code, 2);
   EXPECT_EQ(listing(), (std::vector<std::string>{"m3.toml"}));
 }
+
+TEST_F(CliTest, GalleryBadInputsExitTwoWithoutOutput) {
+  fs::path out = dir_ / "sheet.png";
+  Result r = run("gallery --species-dir '" + (dir_ / "nope").string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("--species-dir"), std::string::npos) << r.err;
+  write("bad.toml", "method = \"mgv\"\nnodes = -5\n");
+  r = run("gallery --species-dir '" + dir_.string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("bad.toml:2: nodes"), std::string::npos) << r.err;
+  EXPECT_EQ(run("gallery --species-dir '" + dir_.string() + "'").code, 2);  // --out is required
+  EXPECT_EQ(run("gallery --out '" + out.string() + "' --size 5").code, 2);
+  EXPECT_EQ(listing(), (std::vector<std::string>{"bad.toml"}));
+}
