@@ -27,7 +27,8 @@ struct GenerateArgs {
   std::string species;
   std::string method;
   std::optional<uint64_t> seed;
-  std::string out;
+  std::string out;  // .glb (may be empty when svg is given)
+  std::string svg;  // magnetic only: the 2D curves as SVG
 };
 int run_generate(const GenerateArgs& args);
 
@@ -44,6 +45,15 @@ struct PreviewArgs {
   uint32_t views = 4;
 };
 int run_preview(const PreviewArgs& args);
+
+struct GalleryArgs {
+  std::string out;
+  std::string species_dir = "scenes/species";
+  uint32_t size = 256;
+  uint32_t columns = 0;  // 0: about square
+  std::string device;
+};
+int run_gallery(const GalleryArgs& args);
 
 struct BakeArgs {
   std::string model;

@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
   gen_cmd->add_option("--species", gen.species, "Species preset (TOML)")->check(CLI::ExistingFile);
   gen_cmd->add_option("--method", gen.method, "Modeling method id (uses its built-in preset without --species)");
   auto* seed_opt = gen_cmd->add_option("--seed", gen_seed, "Random seed (overrides the preset's)");
-  gen_cmd->add_option("--out", gen.out, "Output .glb")->required();
+  gen_cmd->add_option("--out", gen.out, "Output .glb");
+  gen_cmd->add_option("--svg", gen.svg, "Also write the 2D curves as SVG (method magnetic, mode 2d)");
 
   app::MakeInputsArgs inputs;
   auto* inputs_cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
@@ -38,6 +39,14 @@ int main(int argc, char** argv) {
   preview_cmd->add_option("--size", preview.size, "Pixels per view")->check(CLI::Range(32, 4096));
   preview_cmd->add_option("--views", preview.views, "Number of views around the model")->check(CLI::Range(1, 64));
   preview_cmd->add_option("--device", preview.device, "Device index or name substring");
+
+  app::GalleryArgs gallery;
+  auto* gallery_cmd = cli.add_subcommand("gallery", "Render every species preset into one labelled contact sheet");
+  gallery_cmd->add_option("--out", gallery.out, "Output image (.png)")->required();
+  gallery_cmd->add_option("--species-dir", gallery.species_dir, "Folder of species presets (default: scenes/species)");
+  gallery_cmd->add_option("--size", gallery.size, "Pixels per preset")->check(CLI::Range(32, 2048));
+  gallery_cmd->add_option("--columns", gallery.columns, "Presets per row (default: about square)")->check(CLI::Range(1, 64));
+  gallery_cmd->add_option("--device", gallery.device, "Device index or name substring");
 
   app::BakeArgs bake;
   uint64_t bake_seed = 0;
@@ -119,6 +128,7 @@ int main(int argc, char** argv) {
     }
     if (*inputs_cmd) return app::run_make_inputs(inputs);
     if (*preview_cmd) return app::run_preview(preview);
+    if (*gallery_cmd) return app::run_gallery(gallery);
     if (*bake_cmd) {
       if (*bake_seed_opt) bake.seed = bake_seed;
       return app::run_bake(bake);

@@ -4,9 +4,15 @@
 #include <cmath>
 #include <cstring>
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <glm/gtc/constants.hpp>
 
 namespace forest {
+
+namespace {
+constexpr uint8_t kBackground = 40;  // the sheet's neutral grey
+}
 
 Scene make_model_scene(const TreeModel& model, uint32_t size, uint32_t samples) {
   float radius = std::max(model.bounding_sphere.w, 1e-3f);
@@ -51,6 +57,30 @@ std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& mode
   return frames;
 }
 
+FrameImage add_label(const FrameImage& frame, const std::vector<std::string>& lines, uint32_t band) {
+  FrameImage out;
+  out.width = frame.width;
+  out.height = frame.height + band;
+  out.rgba.resize(size_t(out.width) * out.height * 4);
+  std::memcpy(out.rgba.data(), frame.rgba.data(), frame.rgba.size());
+  for (size_t i = frame.rgba.size(); i < out.rgba.size(); i += 4) {
+    out.rgba[i] = out.rgba[i + 1] = out.rgba[i + 2] = kBackground;
+    out.rgba[i + 3] = 255;
+  }
+  // OIIO draws straight into our pixels (the plots of `forest report` use the same text).
+  OIIO::ImageBuf buf(OIIO::ImageSpec(int(out.width), int(out.height), 4, OIIO::TypeDesc::UINT8), out.rgba.data());
+  const int big = std::max(8, int(band * 0.42f)), small = std::max(7, int(band * 0.3f));
+  const float white[4] = {1, 1, 1, 1}, grey[4] = {0.7f, 0.7f, 0.7f, 1};
+  int y = int(frame.height) + big + std::max(1, int(band) / 16);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    int px = i == 0 ? big : small;
+    if (y > int(out.height)) break;
+    OIIO::ImageBufAlgo::render_text(buf, std::max(2, px / 3), y, lines[i], px, "DejaVuSans", i == 0 ? white : grey);
+    y += small + std::max(2, px / 4);
+  }
+  return out;
+}
+
 FrameImage compose_grid(const std::vector<FrameImage>& frames, uint32_t columns, uint32_t gap) {
   FrameImage sheet;
   if (frames.empty()) return sheet;
@@ -61,7 +91,7 @@ FrameImage compose_grid(const std::vector<FrameImage>& frames, uint32_t columns,
   sheet.height = rows * h + (rows + 1) * gap;
   sheet.rgba.assign(size_t(sheet.width) * sheet.height * 4, 0);
   for (size_t i = 0; i < sheet.rgba.size(); i += 4) {  // neutral grey background
-    sheet.rgba[i] = sheet.rgba[i + 1] = sheet.rgba[i + 2] = 40;
+    sheet.rgba[i] = sheet.rgba[i + 1] = sheet.rgba[i + 2] = kBackground;
     sheet.rgba[i + 3] = 255;
   }
   for (size_t i = 0; i < frames.size(); ++i) {

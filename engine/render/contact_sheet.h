@@ -1,6 +1,7 @@
 // Turntable views of one model on a neutral ground, and grids of frames (contact sheets):
 // `forest preview`, `forest gallery`, and tests that need to see a model.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "engine/render/renderer.h"
@@ -22,6 +23,10 @@ CameraDesc orbit_camera(glm::vec4 bounding_sphere, float azimuth_rad, float elev
 
 // One frame per view, the camera framing the model's bounding sphere.
 std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& model, const TurntableOptions& options);
+
+// `frame` with a band of `band` pixels added below it (the sheet's background grey) holding
+// `lines` of text, the first larger and white, the rest grey (OpenImageIO, DejaVu Sans).
+FrameImage add_label(const FrameImage& frame, const std::vector<std::string>& lines, uint32_t band);
 
 // Frames (all the same size) laid out left to right, top to bottom, `columns` wide, with a
 // `gap` of background color between them.

@@ -65,6 +65,13 @@ SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defau
   l.angle_jitter_deg = float(t.number("leaf_angle_jitter", defaults.leaves.angle_jitter_deg, 0.0, 90.0));
   l.per_tip = int(t.integer("leaves_per_tip", defaults.leaves.per_tip, 0, 16));
   l.along = int(t.integer("leaves_along", defaults.leaves.along, 0, 16));
+  // Species character for graph methods too: one leaf per node (or a decussate pair) along
+  // the twigs; whorled leaves are an L-system feature (leaves_per_node) and not offered here.
+  l.phyllotaxis = *parse_phyllotaxis(t.choice("phyllotaxis", phyllotaxis_name(defaults.leaves.phyllotaxis),
+                                              {"alternate", "distichous", "opposite", "decussate", "spiral"}));
+  l.color_jitter = float(t.number("leaf_color_jitter", defaults.leaves.color_jitter, 0.0, 0.5));
+  s.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", leaf_shape_name(defaults.leaf_shape),
+                                            {"ovate", "elliptic", "lanceolate", "needles"}));
   s.mesher.min_sides = defaults.mesher.min_sides;
   s.mesher.max_sides = defaults.mesher.max_sides;
   read_ring_sides(t, s.mesher);
@@ -175,6 +182,7 @@ TreeModel finish_skeleton(TreeGraph graph, const SkeletonStyle& style, ModelDesc
   if (style.leaves.size > 0.0f) place_twig_leaves(graph, style.leaves, seed);
   description.bark_color = style.bark_color;
   description.leaf_color = style.leaf_color;
+  description.leaf_shape = style.leaf_shape;
   return build_tree_model(graph, description, style.mesher);
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "generators/methods/model_builder.h"
+#include "generators/tree/leaf_texture.h"
 #include "generators/tree/leaves.h"
 #include "generators/tree/tree_graph.h"
 
@@ -29,14 +30,17 @@ struct SkeletonStyle {
   MesherParams mesher;
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
   glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
+  LeafShape leaf_shape = LeafShape::ovate;  // texture and card outline
 };
 
-// The species keys read by read_skeleton_style, for a method's check_keys list.
+// The species keys read by read_skeleton_style, for a method's check_keys list. leaf_shape
+// ("ovate", "elliptic", "lanceolate", "needles"), phyllotaxis ("alternate"/"distichous",
+// "opposite"/"decussate", "spiral") and leaf_color_jitter mean what they mean for lsystem.
 #define FOREST_SKELETON_STYLE_KEYS                                                          \
   "smooth", "simplify", "radius_model", "tip_radius", "trunk_radius", "zeta",              \
       "pipe_exponent", "leaf_size", "leaf_size_jitter", "leaf_angle", "leaf_angle_jitter",   \
       "leaves_per_tip", "leaves_along", "ring_sides_min", "ring_sides_max", "bark_color",    \
-      "leaf_color"
+      "leaf_color", "leaf_shape", "phyllotaxis", "leaf_color_jitter"
 
 SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defaults = {});
 

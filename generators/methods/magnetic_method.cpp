@@ -130,6 +130,7 @@ std::string magnetic_svg_from_species_text(const std::string& text, const std::s
   if (t.string("method") != "magnetic") t.fail("method", "--svg needs a species of method \"magnetic\"");
   uint64_t sd = seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
   MagneticSpecies s = read_magnetic_species(t);
+  if (s.field.three_d) t.fail("mode", "--svg needs mode = \"2d\": the 3D variant has no planar curves");
   s.field.seed = sd;
   MagneticResult r = grow_magnetic(s.fill, s.field, sd);
   return magnetic_svg(r, glm::dvec2(s.fill.size.x, s.fill.size.y));

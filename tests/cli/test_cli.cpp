@@ -1,6 +1,7 @@
 // Runs build/forest as a user would: exit codes, one-line error messages naming file, line
 // and key, no partial output files, and the happy paths of info/generate/render.
 #include <gtest/gtest.h>
+#include <expat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -72,6 +73,32 @@ std::string scene_with(const std::string& body) {
          "[camera]\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
          "[terrain]\nsize = 100\nresolution = 8\n"
          "[[species]]\npreset = \"" + kSource + "/scenes/species/broadleaf.toml\"\n" + body;
+}
+
+// Parses XML with expat: false when it is not well-formed; counts <polyline> elements.
+bool parse_xml(const std::string& text, size_t& polylines, std::string& root) {
+  struct State {
+    size_t polylines = 0;
+    std::string root;
+  } state;
+  XML_Parser parser = XML_ParserCreate(nullptr);
+  XML_SetUserData(parser, &state);
+  XML_SetStartElementHandler(parser, [](void* data, const XML_Char* name, const XML_Char**) {
+    State& st = *static_cast<State*>(data);
+    if (st.root.empty()) st.root = name;
+    if (std::string(name) == "polyline") ++st.polylines;
+  });
+  bool ok = XML_Parse(parser, text.data(), int(text.size()), 1) == XML_STATUS_OK;
+  XML_ParserFree(parser);
+  polylines = state.polylines;
+  root = state.root;
+  return ok;
+}
+
+// The integer after `"key":` in a glb's JSON chunk (-1 if absent).
+long json_int(const std::string& glb, const std::string& key) {
+  size_t at = glb.find("\"" + key + "\":");
+  return at == std::string::npos ? -1 : std::atol(glb.c_str() + at + key.size() + 3);
 }
 
 struct BadScene {
@@ -253,4 +280,79 @@ TEST_F(CliTest, CompareMaskRendersOfFullAndCook) {
   // A corrupt PNG is an input error too.
   fs::path corrupt = write("corrupt.png", "\x89PNG not really");
   EXPECT_EQ(run("compare '" + full.string() + "' '" + corrupt.string() + "'").code, 2);
+}
+
+// A small 2D magnetic species: few curves, quick.
+const char* kMagnetic2d = R"(method = "magnetic"
+seed = 4
+mode = "2d"
+size = [300.0, 400.0, 1.0]
+cell = 4.0
+dt = 0.5
+trunk_q0 = 0.25
+child_spacing = 60.0
+max_curves = 12
+max_depth = 3
+scale = 0.03
+leaf_size = 0.1
+)";
+
+TEST_F(CliTest, GenerateSvgWritesOnePolylinePerCurve) {
+  fs::path species = write("klimt.toml", kMagnetic2d);
+  fs::path glb = dir_ / "m.glb", svg = dir_ / "m.svg";
+  Result r = run("generate --species '" + species.string() + "' --out '" + glb.string() + "' --svg '" + svg.string() + "'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string text = slurp(svg);
+  size_t polylines = 0;
+  std::string root;
+  ASSERT_TRUE(parse_xml(text, polylines, root)) << text.substr(0, 200);
+  EXPECT_EQ(root, "svg");
+  long curves = json_int(slurp(glb), "curves");
+  ASSERT_GT(curves, 1);
+  EXPECT_EQ(long(polylines), curves);
+  EXPECT_NE(r.out.find("m.svg: " + std::to_string(curves) + " curves"), std::string::npos) << r.out;
+  // --svg alone, another seed: a different drawing; the same seed again: the same bytes.
+  fs::path svg2 = dir_ / "s2.svg", svg3 = dir_ / "s3.svg";
+  ASSERT_EQ(run("generate --species '" + species.string() + "' --svg '" + svg2.string() + "'").code, 0);
+  ASSERT_EQ(run("generate --species '" + species.string() + "' --seed 9 --svg '" + svg3.string() + "'").code, 0);
+  EXPECT_EQ(slurp(svg2), text);
+  EXPECT_NE(slurp(svg3), text);
+  EXPECT_EQ(listing(), (std::vector<std::string>{"klimt.toml", "m.glb", "m.svg", "s2.svg", "s3.svg"}));
+}
+
+TEST_F(CliTest, GenerateSvgNeedsPlanarCurves) {
+  fs::path svg = dir_ / "x.svg", glb = dir_ / "x.glb";
+  // A method without curves: one line naming the key, exit 2, no file at all.
+  Result r = run("generate --species '" + kSource + "/scenes/species/broadleaf.toml' --out '" + glb.string() +
+                 "' --svg '" + svg.string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("broadleaf.toml:1: method"), std::string::npos) << r.err;
+  // The 3D variant has no planar curves.
+  std::string text = kMagnetic2d;
+  text.replace(text.find("mode = \"2d\""), 11, "mode = \"3d\"");
+  fs::path species = write("m3.toml", text);
+  r = run("generate --species '" + species.string() + "' --svg '" + svg.string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("m3.toml:3: mode"), std::string::npos) << r.err;
+  // Neither --out nor --svg.
+  EXPECT_EQ(run("generate --method magnetic").code, 2);
+  EXPECT_EQ(listing(), (std::vector<std::string>{"m3.toml"}));
+}
+
+TEST_F(CliTest, GalleryBadInputsExitTwoWithoutOutput) {
+  fs::path out = dir_ / "sheet.png";
+  Result r = run("gallery --species-dir '" + (dir_ / "nope").string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("--species-dir"), std::string::npos) << r.err;
+  write("bad.toml", "method = \"mgv\"\nnodes = -5\n");
+  r = run("gallery --species-dir '" + dir_.string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("bad.toml:2: nodes"), std::string::npos) << r.err;
+  EXPECT_EQ(run("gallery --species-dir '" + dir_.string() + "'").code, 2);  // --out is required
+  EXPECT_EQ(run("gallery --out '" + out.string() + "' --size 5").code, 2);
+  EXPECT_EQ(listing(), (std::vector<std::string>{"bad.toml"}));
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "generators/bake/asset_io.h"
@@ -66,8 +67,17 @@ TEST(Species, MethodIdsAndDefaultText) {
   EXPECT_EQ(m.meta["node_count"], 24385);  // 24384 F after 7 iterations, plus the root
 }
 
+// The species library (README): named after seed 000's models and more, spanning methods
+// and habits. Forest-sized: LOD0 <= 10 K branch triangles and <= 5 K leaves.
+const char* const kLibrary[] = {"picea_abies",    "pinus_sylvestris", "larix_decidua",
+                                "betula_pendula", "fagus_sylvatica",  "salix_alba",
+                                "ulmus_laevis",   "populus_trichocarpa", "acer_campestre",
+                                "quercus_robur"};
+
 TEST(Species, EveryPresetGenerates) {
   size_t presets = 0;
+  std::set<std::string> library_methods;
+  size_t library = 0;
   for (const auto& e : fs::directory_iterator(species_dir())) {
     if (e.path().extension() != ".toml") continue;
     ++presets;
@@ -75,8 +85,19 @@ TEST(Species, EveryPresetGenerates) {
     EXPECT_GT(m.branches.indices.size(), 0u) << e.path();
     EXPECT_GT(m.leaves.size(), 0u) << e.path();
     EXPECT_EQ(m.meta["species"], e.path().stem().string());
+    std::string stem = e.path().stem().string();
+    if (std::find(std::begin(kLibrary), std::end(kLibrary), stem) == std::end(kLibrary)) continue;
+    ++library;
+    library_methods.insert(m.meta["method"].get<std::string>());
+    EXPECT_LE(m.branches.indices.size() / 3, 10000u) << stem;
+    EXPECT_LE(m.leaves.size(), 5000u) << stem;
+    EXPECT_GE(m.leaves.size(), 500u) << stem;
+    EXPECT_GE(double(m.meta["height"]), 7.0) << stem;
+    EXPECT_LE(double(m.meta["height"]), 20.0) << stem;
   }
   EXPECT_GE(presets, 3u);
+  EXPECT_EQ(library, std::size(kLibrary));
+  EXPECT_GE(library_methods.size(), 4u);
 }
 
 TEST(Species, DemoPresetsFitTheBudget) {
@@ -161,4 +182,45 @@ TEST(Species, ErrorsNameFileLineAndKey) {
   expect_error("method = \"oak-magic\"\naxiom = \"F\"\n", 1, "method");     // unknown method
   expect_error("axiom = \"F\"\nmethod = \"lsystem\"\n", 1, "axiom");        // method not first
   EXPECT_THROW(generate_from_species(species_dir() / "does-not-exist.toml"), InputError);
+}
+
+// The graph methods (mig, mgv, magnetic) share the skeleton style keys; leaf_shape,
+// phyllotaxis and leaf_color_jitter give their species the leaf character the L-system has.
+TEST(Species, GraphMethodsTakeLeafShapeAndPhyllotaxis) {
+  std::string base = default_species_text("mgv");
+  base.replace(base.find("nodes = 30000"), 13, "nodes = 3000");
+  base.replace(base.find("leaves_per_tip = 10"), 19, "leaves_per_tip = 2\nleaves_along = 3");
+  auto with = [&](const std::string& lines) {
+    std::string t = base;
+    t.insert(t.find("seed = 3\n") + 9, lines + "\n");
+    return t;
+  };
+  TreeModel ovate = generate_from_species_text(base, "m.toml");
+  TreeModel willow = generate_from_species_text(with("leaf_shape = \"lanceolate\""), "m.toml");
+  EXPECT_EQ(ovate.meta["leaf_shape"], "ovate");
+  EXPECT_EQ(willow.meta["leaf_shape"], "lanceolate");
+  EXPECT_NE(willow.leaf_texture.rgba, ovate.leaf_texture.rgba);
+  // Same skeleton: opposite puts two leaves at each leaf node along a twig, alternate one.
+  TreeModel alternate = generate_from_species_text(with("phyllotaxis = \"alternate\""), "m.toml");
+  TreeModel opposite = generate_from_species_text(with("phyllotaxis = \"opposite\""), "m.toml");
+  EXPECT_EQ(alternate.branches.indices, opposite.branches.indices);
+  EXPECT_EQ(alternate.leaves.size(), ovate.leaves.size());  // spiral: one leaf per node too
+  EXPECT_GT(opposite.leaves.size(), alternate.leaves.size());
+  // Color jitter varies leaf colors; without it every leaf is white (the material's color).
+  TreeModel jitter = generate_from_species_text(with("leaf_color_jitter = 0.2"), "m.toml");
+  ASSERT_EQ(jitter.leaves.size(), ovate.leaves.size());
+  bool varied = false;
+  for (size_t i = 0; i < jitter.leaves.size(); ++i) varied |= jitter.leaves[i].color != ovate.leaves[i].color;
+  EXPECT_TRUE(varied);
+  for (const char* bad : {"leaf_shape = \"round\"", "phyllotaxis = \"whorled\"", "leaf_color_jitter = 2.0"}) {
+    try {
+      generate_from_species_text(with(bad), "m.toml");
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const InputError& e) {
+      std::string key = std::string(bad).substr(0, std::string(bad).find(' '));
+      std::string line = std::to_string(std::count(base.begin(), base.begin() + base.find("seed = 3\n"), '\n') + 2);
+      EXPECT_NE(std::string(e.what()).find("m.toml:" + line + ":"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
 }
