@@ -151,7 +151,7 @@ void table_7_4(vk::Context& ctx, const Options& o, const std::string& device) {
       PriorityParams params;
     };
     std::vector<Variant> variants;
-    for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined})
+    for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined, Priority::layered})
       variants.push_back({p, p == Priority::random ? "random + s_opt (Opt PR)" : std::string(priority_name(p)), {}});
     if (o.variants) {
       PriorityParams greedy;

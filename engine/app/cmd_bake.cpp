@@ -15,7 +15,7 @@ BakeResult bake_model(TreeModel& model, const BakeArgs& args) {
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
   std::optional<Priority> priority = parse_priority(args.priority);
-  if (!priority) throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined)");
+  if (!priority) throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined, layered)");
   uint64_t seed = args.seed ? *args.seed : model.meta.value("seed", uint64_t(1));
 
   HullParams hp;
