@@ -137,6 +137,19 @@ struct PrCounts {
   uint pad;
 };
 
+// Push constants of pr_count.comp. Offsets are in pixels into the coverage reference
+// buffer, which holds one full-detail reference per view and, for batched bake
+// measurements, the branch-only coverage of that view: the pruned frame then draws only
+// leaves and its coverage is OR-ed with the branch mask (the same union the full draw
+// would produce, since coverage writes a constant white regardless of depth order).
+#define PR_NO_MASK 0xffffffffu
+struct PrCountPush {
+  uint pixel_count;
+  uint reference_offset;
+  uint branch_offset;  // PR_NO_MASK: the test frame already holds the branches
+  uint result;         // index into the PrCounts array
+};
+
 #ifdef __cplusplus
 }  // namespace forest::gpu
 #undef GPU_STRUCT

@@ -15,7 +15,7 @@ BakeResult bake_model(TreeModel& model, const BakeArgs& args) {
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
   std::optional<Priority> priority = parse_priority(args.priority);
-  if (!priority) throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined)");
+  if (!priority) throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined, layered)");
   uint64_t seed = args.seed ? *args.seed : model.meta.value("seed", uint64_t(1));
 
   HullParams hp;
@@ -71,6 +71,9 @@ int run_bake(const BakeArgs& args) {
               "hull+order %.1f s, PR %.1f s\n",
               args.model.c_str(), out.c_str(), model.leaves.size(), args.priority.c_str(), r.hull_triangles,
               t.views, t.resolution, r.hull_seconds, r.pr_seconds);
+  const PrBakeStats& st = r.measurement.stats;
+  std::printf("PR: %u pruned renders in %u submits; references %.1f s, pruned renders + counts %.1f s\n", st.renders,
+              st.submits, st.reference_seconds, st.compare_seconds);
   std::printf("s_opt at lambda 0.1/0.2/0.5: %.2f %.2f %.2f (1/lambda: 10 5 2); Q there: %.3f %.3f %.3f\n",
               double(t.s_opt[2]), double(t.s_opt[4]), double(t.s_opt[10]), double(t.q_opt[2]), double(t.q_opt[4]),
               double(t.q_opt[10]));

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   auto* bake_cmd = cli.add_subcommand("bake", "Add the metaball hull, priority-sorted leaves and PR-measured lambda/scale tables to a model");
   bake_cmd->add_option("model", bake.model, "Model (.glb)")->required();
   bake_cmd->add_option("--out", bake.out, "Baked model (default: in place)");
-  bake_cmd->add_option("--priority", bake.priority, "Leaf order: random, density, orientation, combined");
+  bake_cmd->add_option("--priority", bake.priority, "Leaf order: random, density, orientation, combined, layered");
   auto* bake_seed_opt = bake_cmd->add_option("--seed", bake_seed, "Seed of the random parts (default: the model's)");
   bake_cmd->add_option("--views", bake.views, "Views averaged by the PR measurement")->check(CLI::Range(1, 64));
   bake_cmd->add_option("--resolution", bake.resolution, "Pixels of each coverage render")->check(CLI::Range(32, 4096));

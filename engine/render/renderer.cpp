@@ -99,7 +99,9 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   models_ = vk::create_buffer_from<gpu::Model>(ctx, storage, models);
   leaves_ = vk::create_buffer_from<gpu::Leaf>(ctx, storage, leaves);
   prune_tables_ = vk::create_buffer_from<float>(ctx, storage, tables);
-  frame_ = vk::create_buffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::upload);
+  // TRANSFER_DST: coverage batches update it between the renders of one command buffer.
+  frame_ = vk::create_buffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             vk::MemoryUse::upload);
   // Room for one branch and one leaf command per instance.
   commands_ = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * 2 * std::max(instance_count_, 1u),
                                 storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, vk::MemoryUse::device);
@@ -186,7 +188,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   plci.setLayoutCount = 1;
   plci.pSetLayouts = &set_layout_;
-  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::PrCountPush)};
   plci.pushConstantRangeCount = 1;
   plci.pPushConstantRanges = &push;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &layout_));
@@ -384,11 +386,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    uint32_t pixels = width_ * height_;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pr_count_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pixels), &pixels);
-    vkCmdDispatch(cmd, (pixels + PR_GROUP_SIZE - 1) / PR_GROUP_SIZE, 1, 1);
+    record_pr_count(cmd, {width_ * height_, 0, PR_NO_MASK, 0});
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferCopy copy{0, 0, sizeof(gpu::PrCounts)};
@@ -443,7 +441,7 @@ PrResult Renderer::compare_with_reference(const CameraDesc& camera, const FrameS
   return {c.tp, c.fp, c.fn};
 }
 
-FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& settings, Output output) {
+gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const FrameSettings& settings) const {
   CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
   const SkyDesc& sky = scene_.desc.sky;
   gpu::FrameData fd{};
@@ -462,11 +460,17 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u);
   fd.instance_count = instance_count_;
   fd.leaf_command_base = instance_count_;
-  std::memcpy(frame_.mapped, &fd, sizeof(fd));
+  return fd;
+}
 
-  VK_CHECK(vkResetCommandBuffer(cmd_, 0));
-  wireframe_ = settings.wireframe && has_wireframe() && !settings.mask;
-  record(cmd_, output, settings.mask);
+void Renderer::record_pr_count(VkCommandBuffer cmd, const gpu::PrCountPush& push) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pr_count_);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  vkCmdDispatch(cmd, (push.pixel_count + PR_GROUP_SIZE - 1) / PR_GROUP_SIZE, 1, 1);
+}
+
+void Renderer::submit_and_wait() {
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd_;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -475,6 +479,15 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   VK_CHECK(vkResetFences(ctx_.device, 1, &fence_));
   VK_CHECK(vkQueueSubmit2(ctx_.queue, 1, &si, fence_));
   VK_CHECK(vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX));
+}
+
+FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& settings, Output output) {
+  gpu::FrameData fd = frame_data(camera, settings);
+  std::memcpy(frame_.mapped, &fd, sizeof(fd));
+  VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+  wireframe_ = settings.wireframe && has_wireframe() && !settings.mask;
+  record(cmd_, output, settings.mask);
+  submit_and_wait();
 
   FrameStats stats;
   stats.instances = instance_count_;

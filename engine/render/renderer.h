@@ -60,6 +60,13 @@ struct PrResult {
   }
 };
 
+// One pruned coverage render of a batch: the model at detail λ with leaf area scale s, seen
+// from one of the views given to Renderer::set_coverage_views.
+struct CoverageJob {
+  uint32_t view = 0;
+  float lambda = 1.0f, scale = 1.0f;
+};
+
 class Renderer {
  public:
   // `samples`: MSAA samples per pixel, lowered to what the device supports.
@@ -77,11 +84,27 @@ class Renderer {
   void render_reference(const CameraDesc& camera, const FrameSettings& reference);
   PrResult compare_with_reference(const CameraDesc& camera, const FrameSettings& test);
 
+  // Batched coverage comparisons (PR bake, single-sampled renderers only; coverage_batch.cpp).
+  // Stores per view the full-detail coverage and the branch-only coverage on the GPU (one
+  // submit); compare_coverage then draws only the leaf prefix of each job, ORs in its view's
+  // branch mask and counts against its reference — the same counts as render_reference +
+  // compare_with_reference, without redrawing the branches — all jobs in one submit.
+  void set_coverage_views(const std::vector<CameraDesc>& views);
+  std::vector<PrResult> compare_coverage(const std::vector<CoverageJob>& jobs);
+
  private:
   void create_pipelines();
   enum class Output { none, image, reference, compare };
   FrameStats submit(const CameraDesc& camera, const FrameSettings& settings, Output output);
   void record(VkCommandBuffer cmd, Output output, bool mask);
+  gpu::FrameData frame_data(const CameraDesc& camera, const FrameSettings& settings) const;
+  void submit_and_wait();
+  // Coverage batches: one mask render (branches and/or leaves) recorded into `cmd`.
+  void record_coverage_pass(VkCommandBuffer cmd, const gpu::FrameData& frame, bool branches, bool leaves);
+  void record_pr_count(VkCommandBuffer cmd, const gpu::PrCountPush& push);
+  void reserve_coverage(uint32_t reference_frames, uint32_t results);
+  std::vector<CameraDesc> coverage_views_;
+  uint32_t reference_capacity_ = 1, result_capacity_ = 1;  // frames / PrCounts allocated
 
   vk::Context& ctx_;
   const Scene& scene_;

@@ -62,12 +62,13 @@ std::string_view priority_name(Priority p) {
     case Priority::density: return "density";
     case Priority::orientation: return "orientation";
     case Priority::combined: return "combined";
+    case Priority::layered: return "layered";
   }
   return "random";
 }
 
 std::optional<Priority> parse_priority(std::string_view name) {
-  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined})
+  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined, Priority::layered})
     if (priority_name(p) == name) return p;
   return std::nullopt;
 }
@@ -136,6 +137,20 @@ std::vector<uint32_t> priority_order(const TreeModel& model, const Hull& hull, P
   }
 
   LeafPriorityScores s = leaf_priority_scores(model, hull, seed, params);
+  if (p == Priority::layered) {
+    std::vector<glm::vec3> centers(n);
+    for (size_t i = 0; i < n; ++i) centers[i] = leaf_center(model.leaves[i]);
+    MetaballField field = make_metaball_field(std::move(centers), hull.radius);
+    size_t removed = 0;
+    std::vector<uint32_t> dorder =
+        density_order(field, {params.density_uniform_cv, params.density_random_below}, seed, &removed);
+    // Survivors by ascending α: a key of −α for them, below every survivor for the rest.
+    std::vector<double> key(n, -10.0);
+    for (size_t k = 0; k + removed < n; ++k) key[dorder[k]] = -double(s.alpha[dorder[k]]);
+    std::vector<uint32_t> order = sort_descending(key, seed);
+    std::copy(dorder.end() - std::ptrdiff_t(removed), dorder.end(), order.end() - std::ptrdiff_t(removed));
+    return order;
+  }
   std::vector<double> key(n);
   if (p == Priority::orientation) {
     for (size_t i = 0; i < n; ++i) key[i] = -double(s.alpha[i]);

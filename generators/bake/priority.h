@@ -19,6 +19,10 @@ enum class Priority {
   density,      // §7.3.2: leaves in dense regions (high F) go first; random once uniform
   orientation,  // §7.3.3: small angle α between leaf and hull normal survives longer
   combined,     // §7.3.4: P = P_silhouette² + P_density, normalized, jittered, descending
+  // Ours, from §7.3's findings (density helps at high λ, orientation at small λ) taken as a
+  // switch instead of a blend: the leaves density's greedy phase removes go first, in that
+  // order; the survivors are kept by orientation (small α last to go).
+  layered,
 };
 
 std::string_view priority_name(Priority p);

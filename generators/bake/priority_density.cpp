@@ -9,7 +9,7 @@
 namespace forest {
 
 std::vector<uint32_t> density_order(const MetaballField& field, const DensityOrderParams& params,
-                                    uint64_t seed) {
+                                    uint64_t seed, size_t* greedy_removed) {
   const size_t n = field.centers.size();
   std::vector<uint32_t> order;
   if (n == 0) return order;
@@ -93,6 +93,7 @@ std::vector<uint32_t> density_order(const MetaballField& field, const DensityOrd
     std::swap(order[i - 1], order[j]);
   }
   order.insert(order.end(), removal.rbegin(), removal.rend());
+  if (greedy_removed) *greedy_removed = removal.size();
   return order;
 }
 

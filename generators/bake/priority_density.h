@@ -18,7 +18,9 @@ struct DensityOrderParams {
 };
 
 // Leaf indices (generators of `field`) in descending survival. Deterministic in seed.
+// `greedy_removed`, when given, receives how many leaves the greedy phase removed: they are
+// the last ones of the order, the others (the random survivors) come first.
 std::vector<uint32_t> density_order(const MetaballField& field, const DensityOrderParams& params,
-                                    uint64_t seed);
+                                    uint64_t seed, size_t* greedy_removed = nullptr);
 
 }  // namespace forest

@@ -1,6 +1,7 @@
 // PR measurement on the GPU (seed 000 §7.2) and the pruning tables measured with it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/render/contact_sheet.h"
@@ -112,6 +113,69 @@ TEST_F(PrTest, QualityNearlyIndependentOfPixelSize) {
   }
   EXPECT_NEAR(qb.precision(), qs.precision(), 0.05);
   EXPECT_NEAR(qb.recall(), qs.recall(), 0.05);
+}
+
+TEST_F(PrTest, BatchedCountsEqualOneRenderPerSubmit) {
+  // Branches drawn once per view and OR-ed in must give exactly the counts of redrawing
+  // the whole model for every (λ, s).
+  TreeModel m = broadleaf();
+  Scene scene = make_model_scene(m, 96, 1);
+  Renderer r(ctx_, scene, 96, 96, 1);
+  std::vector<CameraDesc> cams = {orbit_camera(m.bounding_sphere, 0.3f, 0.2f, 30.0f),
+                                  orbit_camera(m.bounding_sphere, 2.4f, 0.6f, 30.0f)};
+  std::vector<CoverageJob> jobs = {{0, 0.3f, 2.0f}, {1, 0.3f, 2.0f}, {1, 0.05f, 9.0f}, {0, 1.0f, 1.0f}, {0, 0.7f, 1.2f}};
+  r.set_coverage_views(cams);
+  std::vector<PrResult> batched = r.compare_coverage(jobs);
+  ASSERT_EQ(batched.size(), jobs.size());
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    SCOPED_TRACE(i);
+    FrameSettings full, test;
+    test.prune_mode = PRUNE_FIXED;
+    test.fixed_lambda = jobs[i].lambda;
+    test.fixed_scale = jobs[i].scale;
+    r.render_reference(cams[jobs[i].view], full);
+    PrResult one = r.compare_with_reference(cams[jobs[i].view], test);
+    EXPECT_EQ(batched[i].tp, one.tp);
+    EXPECT_EQ(batched[i].fp, one.fp);
+    EXPECT_EQ(batched[i].fn, one.fn);
+    EXPECT_GT(one.tp, 300u);
+  }
+  EXPECT_EQ(batched[3].fp + batched[3].fn, 0u) << "full detail must match its reference";
+  EXPECT_GT(batched[2].fn + batched[2].fp, batched[0].fn + batched[0].fp) << "λ = 0.05 should lose more than λ = 0.3";
+}
+
+TEST_F(PrTest, ScaleSearchFindsTheExhaustiveOptimum) {
+  TreeModel m = broadleaf();
+  PrBakeOptions o;
+  o.resolution = 80;
+  o.views = 2;
+  o.scale_candidates = 10;
+  o.search_scale = false;
+  PrMeasurement all = measure_pr_tables(ctx_, m, o);
+  o.search_scale = true;
+  PrMeasurement found = measure_pr_tables(ctx_, m, o);
+  // The raw argmax per λ (before the tables are made monotone), as an index on the s grid.
+  auto best_index = [&](const PrMeasurement& pm, float l) {
+    std::vector<float> grid = scale_grid(l, o.scale_candidates);
+    double best = -2.0;
+    float s_best = 0.0f;
+    for (const PrSample& ps : pm.samples)
+      if (ps.lambda == l && (ps.pr.quality() > best || (ps.pr.quality() == best && ps.scale < s_best)))
+        best = ps.pr.quality(), s_best = ps.scale;
+    return int(std::find(grid.begin(), grid.end(), s_best) - grid.begin());
+  };
+  int same = 0;
+  for (int i = 1; i < S_SAMPLES; ++i) {
+    float l = float(i) / float(S_SAMPLES - 1);
+    SCOPED_TRACE(l);
+    int a = best_index(all, l), b = best_index(found, l);
+    EXPECT_LE(std::abs(a - b), 1);
+    same += a == b;
+    EXPECT_NEAR(found.tables.q_opt[i], all.tables.q_opt[i], 0.01f);
+  }
+  EXPECT_GE(same, S_SAMPLES - 4) << "the search should usually land on the very same grid value";
+  EXPECT_LT(found.stats.renders, all.stats.renders * 3 / 4) << "the search should save renders";
+  for (int j = 0; j < D_SAMPLES; ++j) EXPECT_NEAR(found.tables.lambda_opt[j], all.tables.lambda_opt[j], 0.03f) << j;
 }
 
 TEST(PrMath, NonIncreasingIsTheLeastSquaresProjection) {

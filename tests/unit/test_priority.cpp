@@ -107,7 +107,7 @@ double brute_density(const TreeModel& m, size_t i, float r) {
 }  // namespace
 
 TEST(Priority, NamesRoundTrip) {
-  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined})
+  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined, Priority::layered})
     EXPECT_EQ(parse_priority(priority_name(p)), p);
   EXPECT_EQ(priority_name(Priority::combined), "combined");
   EXPECT_FALSE(parse_priority("Random").has_value());
@@ -117,12 +117,13 @@ TEST(Priority, NamesRoundTrip) {
 TEST(Priority, EveryOrderIsAPermutationAndDeterministic) {
   Crown c = sphere_crown(3000, 3);
   Hull hull = build_hull(c.model.leaves, 4.0f);
-  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined}) {
+  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined, Priority::layered}) {
     std::vector<uint32_t> a = priority_order(c.model, hull, p, 7);
     EXPECT_TRUE(is_permutation(a, c.model.leaves.size())) << priority_name(p);
     EXPECT_EQ(a, priority_order(c.model, hull, p, 7)) << priority_name(p);
-    // Seeded where the order is random; orientation is a pure function of the geometry.
-    if (p != Priority::orientation) {
+    // Seeded where the order is random; orientation and layered (greedy density tail, the
+    // rest by orientation) are pure functions of the geometry.
+    if (p != Priority::orientation && p != Priority::layered) {
       EXPECT_NE(a, priority_order(c.model, hull, p, 8)) << priority_name(p);
     }
   }
@@ -255,4 +256,32 @@ TEST(Priority, HullNeededExceptForRandomAndEmptyModels) {
   EXPECT_EQ(priority_order(c.model, Hull{}, Priority::random, 1).size(), 100u);
   TreeModel empty;
   EXPECT_TRUE(priority_order(empty, Hull{}, Priority::combined, 1).empty());
+}
+
+TEST(Priority, LayeredRemovesLikeDensityThenKeepsByOrientation) {
+  Crown c = sphere_crown(1500, 5);
+  // Denser core: the greedy density phase has something to remove.
+  for (size_t i = 0; i < 300; ++i) {
+    LeafPlacement l = c.model.leaves[i];
+    l.position = glm::vec3(0, 3, 0) + 0.25f * (l.position - glm::vec3(0, 3, 0));
+    c.model.leaves.push_back(l);
+    c.radial.push_back(c.radial[i]);
+  }
+  Hull hull = build_hull(c.model.leaves, 4.0f);
+  const size_t n = c.model.leaves.size();
+  std::vector<uint32_t> layered = priority_order(c.model, hull, Priority::layered, 7);
+  std::vector<uint32_t> density = priority_order(c.model, hull, Priority::density, 7);
+  LeafPriorityScores s = leaf_priority_scores(c.model, hull, 7);
+  // The tail is density's greedy tail, leaf for leaf; find where the two orders part.
+  size_t tail = 0;
+  while (tail < n && layered[n - 1 - tail] == density[n - 1 - tail]) ++tail;
+  ASSERT_GT(tail, n / 20) << "the dense core should be removed first";
+  ASSERT_LT(tail, n - n / 10);
+  // The head: ascending α (outward-facing cards survive longest).
+  for (size_t k = 1; k < n - tail; ++k) ASSERT_LE(s.alpha[layered[k - 1]], s.alpha[layered[k]]) << k;
+  std::vector<uint32_t> head(layered.begin(), layered.end() - std::ptrdiff_t(tail));
+  std::vector<uint32_t> survivors(density.begin(), density.end() - std::ptrdiff_t(tail));
+  std::sort(head.begin(), head.end());
+  std::sort(survivors.begin(), survivors.end());
+  EXPECT_EQ(head, survivors);
 }
