@@ -227,7 +227,7 @@ TEST(Silhouettes, InputErrors) {
   fails(R"({"strokes": [{"id": "t", "role": "axis", "points": [[0, 0], [0, 1]]},
         {"id": "c", "role": "crown", "points": [[0, 0], [1, 1], [2, 2]]}]})", "role");
   auto dir = std::filesystem::path(FOREST_SOURCE_DIR) / "scenes" / "species";
-  for (const char* name : {"silhouettes_round", "silhouettes_poplar"}) {
+  for (const char* name : {"silhouettes_round", "silhouettes_poplar_hero"}) {
     TreeModel m = generate_from_species(dir / (std::string(name) + ".toml"));
     EXPECT_GT(m.leaves.size(), 0u) << name;
   }
