@@ -1,5 +1,7 @@
 #include "generators/methods/image_inputs.h"
 
+#include "generators/methods/strokes_io.h"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -286,7 +288,17 @@ ViewSet load_view_set(const std::filesystem::path& file) {
            "camera size " + std::to_string(view.camera.width) + "x" + std::to_string(view.camera.height) +
                " differs from mask " + view.mask.source + " (" + std::to_string(view.mask.width) + "x" +
                std::to_string(view.mask.height) + ")");
-    if (v.contains("attractors")) {
+    if (v.contains("attractors") && v["attractors"].is_string()) {
+      // An SVG drawing in pixel coordinates (its y axis is the image's v axis).
+      std::filesystem::path svg = dir / v["attractors"].get<std::string>();
+      if (svg.extension() != ".svg") fail(where, path + "attractors", "expected an array of polylines or an .svg file");
+      Drawing drawing = read_drawing(svg);
+      for (const Stroke& stroke : drawing.strokes) {
+        Polyline2 line;
+        for (glm::dvec2 q : stroke.points) line.push_back({q.x, -q.y});
+        view.attractors.push_back(std::move(line));
+      }
+    } else if (v.contains("attractors")) {
       const nlohmann::json& a = v["attractors"];
       if (!a.is_array() || a.size() > 10000) fail(where, path + "attractors", "expected an array of polylines");
       for (size_t p = 0; p < a.size(); ++p) {
@@ -310,7 +322,7 @@ ViewSet load_view_set(const std::filesystem::path& file) {
   return set;
 }
 
-void write_view_set(const ViewSet& set, const std::filesystem::path& dir) {
+void write_view_set(const ViewSet& set, const std::filesystem::path& dir, bool svg_attractors) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) fail(dir.string(), "", "cannot create folder: " + ec.message());
@@ -338,6 +350,33 @@ void write_view_set(const ViewSet& set, const std::filesystem::path& dir) {
   std::ofstream out(dir / "views.json", std::ios::binary);
   out << j.dump(1) << "\n";
   if (!out) fail((dir / "views.json").string(), "", "cannot write");
+  // The same view set with the attractors as SVG drawings (one per view, pixel coordinates):
+  // the form a user draws over a photo in a vector editor.
+  bool any = false;
+  for (size_t k = 0; k < set.views.size(); ++k) {
+    const View& v = set.views[k];
+    if (!svg_attractors || v.attractors.empty()) continue;
+    any = true;
+    Drawing drawing;
+    for (size_t l = 0; l < v.attractors.size(); ++l) {
+      Stroke stroke;
+      stroke.id = "attractor" + std::to_string(l);
+      stroke.role = "attractor";
+      for (glm::dvec2 p : v.attractors[l])
+        stroke.points.push_back({std::round(p.x * 100.0) / 100.0, -(std::round(p.y * 100.0) / 100.0)});
+      drawing.strokes.push_back(std::move(stroke));
+    }
+    std::string name = "view" + std::to_string(k) + "_attractors.svg";
+    std::ofstream svg(dir / name, std::ios::binary);
+    svg << drawing_to_svg(drawing);
+    if (!svg) fail((dir / name).string(), "", "cannot write");
+    j["views"][k]["attractors"] = name;
+  }
+  if (any) {
+    std::ofstream out_svg(dir / "views_svg.json", std::ios::binary);
+    out_svg << j.dump(1) << "\n";
+    if (!out_svg) fail((dir / "views_svg.json").string(), "", "cannot write");
+  }
 }
 
 }  // namespace forest

@@ -9,7 +9,10 @@
 //     "views": [
 //       { "mask": "front.png",                           // PNG or EXR, any bit depth
 //         "camera": { ... },                             // one of the forms below
-//         "attractors": [ [[u, v], [u, v], ...], ... ] } // optional polylines, pixels
+//         "attractors": [ [[u, v], [u, v], ...], ... ] } // optional polylines, pixels, or
+//                                                        // "file.svg": an SVG drawing in pixel
+//                                                        // coordinates (strokes_io.h subset),
+//                                                        // one polyline per stroke
 //     ]
 //   }
 // Masks: the alpha channel when the image has one, else the first channel; values in [0, 1]
@@ -130,7 +133,8 @@ nlohmann::json camera_to_json(const Camera& camera);
 // keys (named by JSON path), a camera size that differs from its mask, NaN anywhere, empty
 // polylines, bounds with max <= min, no views.
 ViewSet load_view_set(const std::filesystem::path& views_json);
-// Writes views.json + one PNG per view (view0.png, ...) into `dir` (created).
-void write_view_set(const ViewSet& set, const std::filesystem::path& dir);
+// Writes views.json + one PNG per view (view0.png, ...) into `dir` (created); with
+// `svg_attractors` also viewK_attractors.svg and views_svg.json, the same set referring to them.
+void write_view_set(const ViewSet& set, const std::filesystem::path& dir, bool svg_attractors = false);
 
 }  // namespace forest

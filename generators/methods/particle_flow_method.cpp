@@ -92,7 +92,7 @@ void particle_flow_make_inputs(const std::filesystem::path& dir) {
   oak.trunk_height = 3.0;
   oak.trunk_radius = 0.4;
   oak.branches = 6;
-  write_view_set(synthesize_view_set(oak), dir / "oak");
+  write_view_set(synthesize_view_set(oak), dir / "oak", true);
   CrownSpec poplar = oak;
   poplar.height = 14.0;
   poplar.width = 4.0;
@@ -100,7 +100,7 @@ void particle_flow_make_inputs(const std::filesystem::path& dir) {
   poplar.trunk_height = 2.0;
   poplar.trunk_radius = 0.3;
   poplar.branches = 5;
-  write_view_set(synthesize_view_set(poplar), dir / "poplar");
+  write_view_set(synthesize_view_set(poplar), dir / "poplar", true);
 }
 
 }  // namespace forest

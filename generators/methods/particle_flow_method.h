@@ -16,7 +16,8 @@ TreeModel generate_particle_flow(const TomlTable& root, const std::string& speci
 // Built-in preset: two orthographic 128x128 masks of a synthetic crown, made in memory.
 const char* particle_flow_default_species_text();
 // dir/oak and dir/poplar: views.json (2 orthographic views at 90 degrees, attractor
-// polylines) + two 128x128 masks each.
+// polylines inline) + two 128x128 masks each, and views_svg.json with the same attractors in
+// view0_attractors.svg / view1_attractors.svg (pixel coordinates).
 void particle_flow_make_inputs(const std::filesystem::path& dir);
 
 }  // namespace forest

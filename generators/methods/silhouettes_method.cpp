@@ -3,7 +3,9 @@
 //   "silhouette" at level 0, optional level-1 "axis" over-sketches and "silhouette"
 //   sub-silhouettes, optional "leaf"); without it the synthetic "round" drawing is used
 //   (synthetic = "round" | "poplar"); bottom_angle / top_angle (BAF, degrees), levels,
-//   fill_overlap, fill_samples, phyllotaxis ("none", "spiral", "decussate", "whorl3"),
+//   fill_overlap, fill_samples, style_copy ("none", "sketched": the over-sketched first-level
+//   branch's style onto its siblings, "richest": the style of the sibling with most children),
+//   phyllotaxis ("none", "spiral", "decussate", "whorl3"),
 //   density (extra 3D branches per inferred one), gibbs_iterations (<= 3000), max_branches,
 //   tip_radius, pipe_exponent, leaf_size (default: the leaf silhouette's length),
 //   leaves_per_tip, leaves_along, leaf_angle, ring_sides_min / ring_sides_max,
@@ -17,6 +19,7 @@
 #include "generators/common/rng.h"
 #include "generators/methods/model_builder.h"
 #include "generators/methods/silhouettes_placement.h"
+#include "generators/methods/silhouettes_style.h"
 #include "generators/methods/sketch_propagation.h"
 #include "generators/tree/leaves.h"
 #include "generators/tree/pipe_model.h"
@@ -293,7 +296,7 @@ int copy_subtree(std::vector<SilhouetteNode>& h, int src, int parent, glm::dvec2
 
 TreeModel generate_silhouettes(const TomlTable& t, const std::string& species_name, const GenerateOptions& options) {
   t.check_keys({"method", "name", "seed", "drawing", "synthetic", "bottom_angle", "top_angle", "levels",
-                "fill_overlap", "fill_samples", "phyllotaxis", "density", "gibbs_iterations", "max_branches",
+                "fill_overlap", "fill_samples", "style_copy", "phyllotaxis", "density", "gibbs_iterations", "max_branches",
                 "tip_radius", "pipe_exponent", "leaf_size", "leaves_per_tip", "leaves_along", "leaf_angle",
                 "ring_sides_min", "ring_sides_max", "bark_color", "leaf_color"});
   t.string("name", "");
@@ -321,7 +324,20 @@ TreeModel generate_silhouettes(const TomlTable& t, const std::string& species_na
   GibbsParams gp;
   gp.max_iterations = int(t.integer("gibbs_iterations", 3000, 0, 3000));
 
+  std::string style = t.choice("style_copy", "none", {"none", "sketched", "richest"});
+
   std::vector<SilhouetteNode> h = infer_hierarchy(drawing, sp);
+  size_t restyled = 0;
+  if (style != "none") {  // step G: the source's style onto every other first-level branch
+    int source = -1;
+    for (int c : h[0].children)
+      if (style == "sketched" ? h[size_t(c)].branch.sketched
+                              : source < 0 || h[size_t(c)].children.size() > h[size_t(source)].children.size())
+        source = c;
+    if (source < 0) t.fail("style_copy", "the drawing has no over-sketched first-level branch to copy the style of");
+    Rng style_rng(seed, /*stream=*/43);
+    restyled = copy_style(h, source, style_rng, sp.max_branches * 2);
+  }
   const size_t inferred_count = h.size();
 
   // 3D: every node gets an embedding of its drawing plane; children are turned about
@@ -459,7 +475,7 @@ TreeModel generate_silhouettes(const TomlTable& t, const std::string& species_na
   d.leaf_color = t.vec3("leaf_color", glm::vec3(0.15f, 0.33f, 0.07f), 0.0, 1.0);
   TreeModel model = build_tree_model(graph, d, mesher);
   model.meta["silhouettes"] = {{"inferred_branches", inferred_count - 1}, {"branches_3d", h.size() - 1},
-                               {"first_level", h[0].children.size()}};
+                               {"first_level", h[0].children.size()}, {"restyled", restyled}};
   return model;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -179,9 +180,30 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
     size_t end = text.find('>', at);
     if (end == std::string::npos) throw InputError(name, line_at(text, at), "", "unterminated element");
     std::string element = text.substr(at, end - at + 1);
-    bool polyline = element.rfind("<polyline", 0) == 0;
-    bool path = element.rfind("<path", 0) == 0;
-    if (polyline || path) {
+    auto is = [&](const char* tag) {
+      size_t n = std::strlen(tag);
+      return element.compare(0, n, tag) == 0 && n < element.size() &&
+             (std::isspace((unsigned char)element[n]) || element[n] == '/' || element[n] == '>');
+    };
+    const int element_line = line_at(text, at);
+    if (element.rfind("<!--", 0) == 0) {  // comments may hold anything, '>' included
+      size_t close = text.find("-->", at + 4);
+      if (close == std::string::npos) throw InputError(name, element_line, "", "unterminated comment");
+      at = close + 3;
+      continue;
+    }
+    if (element[1] != '/' && element[1] != '?' && element[1] != '!' && !svg_attribute(element, "transform").empty())
+      throw InputError(name, element_line, "transform",
+                       "transforms are not supported; apply them to the coordinates before export");
+    for (const char* shape : {"<rect", "<circle", "<ellipse", "<use", "<text"})
+      if (is(shape))
+        throw InputError(name, element_line, shape + 1,
+                         "unsupported element; draw strokes as <polyline>, <polygon>, <line> or <path>");
+    bool polyline = is("<polyline") || is("<polygon");
+    bool closed = is("<polygon");
+    bool path = is("<path");
+    bool line = is("<line");
+    if (polyline || path || line) {
       Stroke s;
       s.line = line_at(text, at);
       s.id = svg_attribute(element, "id");
@@ -189,7 +211,7 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
       if (!role.empty()) s.role = role;
       s.parent = svg_attribute(element, "data-parent");
       std::string level = svg_attribute(element, "data-level");
-      std::string key = polyline ? "points" : "d";
+      std::string key = polyline ? "points" : path ? "d" : "x1";
       if (!level.empty()) {
         char* e = nullptr;
         long v = std::strtol(level.c_str(), &e, 10);
@@ -211,6 +233,17 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
         }
         while (pos < data.size() && std::isspace((unsigned char)data[pos])) ++pos;
         if (pos < data.size()) throw InputError(name, s.line, "points", "malformed number near '" + data.substr(pos, 12) + "'");
+        if (closed && !s.points.empty()) s.points.push_back(s.points.front());
+      } else if (line) {
+        double c[4];
+        const char* names[4] = {"x1", "y1", "x2", "y2"};
+        for (int k = 0; k < 4; ++k) {
+          std::string v = svg_attribute(element, names[k]);
+          size_t vp = 0;
+          if (!svg_numbers(v, vp, c[k]) || v.find_first_not_of(" \t", vp) != std::string::npos)
+            throw InputError(name, s.line, names[k], "expected a number");
+        }
+        s.points = {{c[0], -c[1]}, {c[2], -c[3]}};
       } else {
         char command = 0;
         glm::dvec2 current(0.0), start(0.0);
@@ -218,9 +251,10 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
           while (pos < data.size() && (std::isspace((unsigned char)data[pos]) || data[pos] == ',')) ++pos;
           if (pos >= data.size()) break;
           char c = data[pos];
-          if (std::isalpha((unsigned char)c)) {
-            if (std::string("MmLlZz").find(c) == std::string::npos)
-              throw InputError(name, s.line, "d", std::string("unsupported path command '") + c + "' (only M, L, Z)");
+          if (std::isalpha((unsigned char)c) && c != 'e' && c != 'E') {
+            if (std::string("MmLlHhVvZz").find(c) == std::string::npos)
+              throw InputError(name, s.line, "d",
+                               std::string("unsupported path command '") + c + "' (only M, L, H, V, Z; flatten curves first)");
             command = c;
             ++pos;
             if (c == 'Z' || c == 'z') {
@@ -230,9 +264,21 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
           }
           if (command == 0 || command == 'Z' || command == 'z')
             throw InputError(name, s.line, "d", "coordinates without a command");
-          if (!svg_numbers(data, pos, x) || !svg_numbers(data, pos, y))
-            throw InputError(name, s.line, "d", "malformed coordinate pair");
-          glm::dvec2 p = (command == 'm' || command == 'l') ? current + glm::dvec2(x, y) : glm::dvec2(x, y);
+          glm::dvec2 p;
+          if (command == 'H' || command == 'h' || command == 'V' || command == 'v') {
+            double v = 0;
+            if (!svg_numbers(data, pos, v)) throw InputError(name, s.line, "d", "malformed coordinate");
+            if (s.points.empty()) throw InputError(name, s.line, "d", "a path starts with M");
+            bool rel = command == 'h' || command == 'v';
+            if (command == 'H' || command == 'h') p = {rel ? current.x + v : v, current.y};
+            else p = {current.x, rel ? current.y + v : v};
+          } else {
+            if (!svg_numbers(data, pos, x) || !svg_numbers(data, pos, y))
+              throw InputError(name, s.line, "d", "malformed coordinate pair");
+            if (s.points.empty() && command != 'M' && command != 'm')
+              throw InputError(name, s.line, "d", "a path starts with M");
+            p = (command == 'm' || command == 'l') ? current + glm::dvec2(x, y) : glm::dvec2(x, y);
+          }
           if (command == 'M' || command == 'm') {
             if (!s.points.empty()) throw InputError(name, s.line, "d", "one sub-path per stroke");
             start = p;

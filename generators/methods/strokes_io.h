@@ -10,10 +10,14 @@
 //   Coordinates are meters, +y up. Unknown keys are errors.
 //
 // SVG (.svg) — a subset a drawing program can export:
-//   <polyline points="x,y x,y ..."/> and <path d="M x y L x y ... [Z]"/> (absolute M/L/Z and
-//   relative m/l/z only; curves and arcs are refused). Attributes: id, class (= role),
-//   data-parent, data-level. SVG's y axis points down; it is flipped (y = -y_svg) so
-//   drawings look the same as in the SVG viewer. Other elements are ignored.
+//   <polyline points="x,y x,y ..."/>, <polygon points=".."/> (closed: the first point is
+//   repeated at the end), <line x1 y1 x2 y2/> and <path d="M x y L x y H x V y ... [Z]"/>
+//   (M/L/H/V/Z and relative m/l/h/v/z, one sub-path per element; curves and arcs are
+//   refused). Attributes: id, class (= role), data-parent, data-level. SVG's y axis points
+//   down; it is flipped (y = -y_svg) so drawings look the same as in the SVG viewer.
+//   `transform` attributes and <rect>, <circle>, <ellipse>, <use>, <text> are refused
+//   (file:line error) rather than misread; other elements (<svg>, <g>, <title>, ...) are
+//   ignored.
 //
 // Roles: "branch" (sketch-mrf strokes), "crown" (sketch-mrf crown curve), "axis" and
 // "silhouette" (silhouettes levels), "leaf" (leaf silhouette). Errors (InputError naming

@@ -3,45 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <queue>
 
 #include "generators/methods/image_tree_util.h"
+#include "generators/methods/voxel_thinning.h"
 
 namespace forest {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double cross(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
-// Andrew's monotone chain; counter-clockwise in (u, v), no collinear points.
-std::vector<glm::dvec2> convex_hull(std::vector<glm::dvec2> p) {
-  std::sort(p.begin(), p.end(), [](glm::dvec2 a, glm::dvec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<glm::dvec2> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
-double segment_distance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
-  glm::dvec2 ab = b - a;
-  double t = std::clamp(glm::dot(p - a, ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
-  return glm::length(p - (a + t * ab));
-}
 
 const int kNeighbours = 26;
 struct Offsets {
@@ -117,60 +89,66 @@ size_t nearest_occupied(const VoxelGrid& g, glm::dvec3 p) {
   return best;
 }
 
-}  // namespace
 
-std::vector<glm::dvec2> interesting_points(const Mask& m, int count, double min_separation) {
-  std::vector<glm::dvec2> boundary;
-  glm::dvec2 centroid(0.0);
-  double area = 0.0;
-  for (int j = 0; j < m.height; ++j)
-    for (int i = 0; i < m.width; ++i) {
-      if (!m.inside(i, j)) continue;
-      centroid += glm::dvec2(i + 0.5, j + 0.5);
-      area += 1.0;
-      if (!m.inside(i - 1, j) || !m.inside(i + 1, j) || !m.inside(i, j - 1) || !m.inside(i, j + 1))
-        boundary.push_back({i + 0.5, j + 0.5});
+// Skeleton voxels after thinning with `marks` -> parent links of a tree rooted at `base`:
+// breadth-first over 26-adjacent remaining voxels whose joining segment is inside the exact
+// hull (or goes round a concave corner through one more hull voxel), then unmarked ends
+// removed until every end is marked.
+std::vector<int64_t> skeleton_tree(const ViewSet& set, const VoxelGrid& grid, const VoxelSolid& thin,
+                                   const std::vector<uint8_t>& marked, size_t base) {
+  Graph G{grid};
+  std::vector<int64_t> parent(thin.occupied.size(), -2);  // -2: not in the tree
+  parent[base] = -1;
+  std::vector<size_t> order = {base};
+  for (size_t q = 0; q < order.size(); ++q) {
+    size_t i = order[q];
+    glm::ivec3 c = G.cell(i);
+    for (int k = 0; k < kNeighbours; ++k) {
+      glm::ivec3 n = c + kOffsets.d[k];
+      if (!thin.at(n)) continue;
+      size_t j = thin.index(n);
+      if (parent[j] != -2) continue;
+      glm::dvec3 pc = grid.center(c.x, c.y, c.z), pn = grid.center(n.x, n.y, n.z);
+      if (!segment_inside_hull(set, pc, pn)) {
+        // The step cuts a concave corner of the exact hull: go round it through a hull voxel
+        // next to both whose two segments are inside.
+        bool joined = false;
+        for (int k2 = 0; k2 < kNeighbours && !joined; ++k2) {
+          glm::ivec3 w = c + kOffsets.d[k2];
+          if (!G.occ(w) || glm::any(glm::greaterThan(glm::abs(w - n), glm::ivec3(1))) || w == n) continue;
+          size_t mid = thin.index(w);
+          glm::dvec3 pw = grid.center(w.x, w.y, w.z);
+          if (parent[mid] != -2 || !segment_inside_hull(set, pc, pw) || !segment_inside_hull(set, pw, pn)) continue;
+          parent[mid] = int64_t(i);
+          order.push_back(mid);
+          parent[j] = int64_t(mid);
+          order.push_back(j);
+          joined = true;
+        }
+        continue;
+      }
+      parent[j] = int64_t(i);
+      order.push_back(j);
     }
-  std::vector<glm::dvec2> hull = convex_hull(boundary);
-  const size_t h = hull.size();
-  if (h < 3) return hull;
-  double perimeter = 0.0;
-  for (size_t k = 0; k < h; ++k) perimeter += glm::length(hull[(k + 1) % h] - hull[k]);
-  // Pocket depth of each hull edge: the outline pixels nearest to that edge, farthest away.
-  std::vector<double> depth(h, 0.0);
-  for (glm::dvec2 p : boundary) {
-    size_t best = 0;
-    double bd = kInf;
-    for (size_t k = 0; k < h; ++k) {
-      double d = segment_distance(p, hull[k], hull[(k + 1) % h]);
-      if (d < bd) bd = d, best = k;
+  }
+  std::vector<int> child_count(parent.size(), 0);
+  for (size_t i : order)
+    if (parent[i] >= 0) ++child_count[size_t(parent[i])];
+  for (size_t q = order.size(); q-- > 1;) {  // children before parents
+    size_t i = order[q];
+    if (parent[i] != -2 && child_count[i] == 0 && !marked[i]) {
+      for (int64_t p = int64_t(i); p >= 0 && size_t(p) != base && child_count[size_t(p)] == 0 && !marked[size_t(p)];) {
+        int64_t up = parent[size_t(p)];
+        parent[size_t(p)] = -2;
+        --child_count[size_t(up)];
+        p = up;
+      }
     }
-    depth[best] = std::max(depth[best], bd);
   }
-  auto edge_interest = [&](size_t k) {
-    return glm::length(hull[(k + 1) % h] - hull[k]) / perimeter + depth[k] / std::sqrt(area);
-  };
-  std::vector<std::pair<double, size_t>> ranked;
-  for (size_t k = 0; k < h; ++k) {
-    glm::dvec2 a = hull[(k + h - 1) % h] - hull[k], b = hull[(k + 1) % h] - hull[k];
-    double angle = std::acos(std::clamp(glm::dot(a, b) / (glm::length(a) * glm::length(b)), -1.0, 1.0));
-    double sharp = (kPi - angle) / kPi;
-    double score = sharp + std::max(edge_interest((k + h - 1) % h), edge_interest(k));
-    // Tips point away from the trunk: favour the upper and outer part of the silhouette.
-    score += 0.1 * glm::length(hull[k] - centroid / area) / std::sqrt(area);
-    ranked.push_back({-score, k});
-  }
-  std::sort(ranked.begin(), ranked.end());
-  std::vector<glm::dvec2> out;
-  double sep = min_separation * std::hypot(double(m.width), double(m.height));
-  for (auto [s, k] : ranked) {
-    if (int(out.size()) >= count) break;
-    bool far = true;
-    for (glm::dvec2 q : out) far = far && glm::length(q - hull[k]) >= sep;
-    if (far) out.push_back(hull[k]);
-  }
-  return out;
+  return parent;
 }
+
+}  // namespace
 
 HullSkeleton hull_skeleton(const ViewSet& set, const VoxelGrid& grid, const SkeletonParams& params) {
   HullSkeleton out;
@@ -179,31 +157,15 @@ HullSkeleton hull_skeleton(const ViewSet& set, const VoxelGrid& grid, const Skel
   size_t occupied = 0;
   for (uint8_t o : grid.occupied) occupied += o;
   if (occupied == 0) return out;
-
-  // Distance to the hull boundary (cells), for the medial penalty.
-  std::vector<size_t> rim;
-  for (size_t i = 0; i < n; ++i) {
-    if (!grid.occupied[i]) continue;
-    glm::ivec3 c = G.cell(i);
-    for (int k = 0; k < kNeighbours; ++k)
-      if (!G.occ(c + kOffsets.d[k])) {
-        rim.push_back(i);
-        break;
-      }
-  }
-  std::vector<double> dt = dijkstra(G, rim, [](size_t) { return 1.0; }, nullptr);
-  double dt_max = 0.0;
-  for (size_t i = 0; i < n; ++i)
-    if (grid.occupied[i]) dt_max = std::max(dt_max, dt[i] + 1.0);
-  // TEASAR's penalty: large near the boundary, ~1 on the medial axis.
-  auto penalty = [&](size_t j) { return 1.0 + 5000.0 * std::pow(1.0 - (dt[j] + 1.0) / dt_max, 16.0); };
-
+  VoxelSolid solid{grid.dims, grid.occupied};
+  const std::vector<double> dt = boundary_distance(solid);
   const size_t base = nearest_occupied(grid, set.base);
-  std::vector<int64_t> pred;
-  std::vector<double> cost = dijkstra(G, {base}, penalty, &pred);
+  // Marks must be reachable from the base inside the hull: hop distance from it.
+  std::vector<double> reach = dijkstra(G, {base}, [](size_t) { return 1.0; }, nullptr);
 
   // Tips: interesting points of every view, lifted onto the hull along their rays.
-  std::vector<size_t> tips;
+  std::vector<uint8_t> marked(n, 0);
+  marked[base] = 1;
   for (const View& v : set.views) {
     glm::dvec2 centroid(0.0);
     double area = 0.0;
@@ -211,57 +173,69 @@ HullSkeleton hull_skeleton(const ViewSet& set, const VoxelGrid& grid, const Skel
       for (int i = 0; i < v.mask.width; ++i)
         if (v.mask.inside(i, j)) centroid += glm::dvec2(i + 0.5, j + 0.5), area += 1.0;
     centroid /= std::max(area, 1.0);
-    for (glm::dvec2 q : interesting_points(v.mask, params.tips_per_view, params.min_tip_separation)) {
+    Projection foot = project(v.camera, set.base);
+    std::optional<glm::dvec2> base_pixel;
+    if (foot.in_front()) base_pixel = foot.pixel;
+    for (const OutlineTip& tip : outline_tips(v.mask, params.tips, base_pixel, params.tips_per_view)) {
+      glm::dvec2 q = tip.pixel;
       glm::dvec2 toward = glm::length(centroid - q) > 1e-9 ? glm::normalize(centroid - q) : glm::dvec2(0.0);
       for (int s = 0; s < 24; ++s) {  // step inward until the pixel ray meets the hull
         Ray r = pixel_ray(v.camera, q + toward * double(s));
         auto iv = hull_intervals(set, r.origin, r.direction, 0.0, 1e7);
         if (iv.empty()) continue;
         size_t t = nearest_occupied(grid, r.origin + r.direction * (0.5 * (iv.front().a + iv.front().b)));
-        if (std::isfinite(cost[t])) {
-          tips.push_back(t);
+        if (std::isfinite(reach[t])) {
+          marked[t] = 1;
           ++out.lifted_tips;
         }
         break;
       }
     }
   }
-  std::sort(tips.begin(), tips.end());
-  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
 
-  std::vector<uint8_t> on_skeleton(n, 0), marked(n, 0);
-  on_skeleton[base] = marked[base] = 1;
-  auto add_path = [&](size_t t) {
-    marked[t] = 1;
-    for (int64_t i = int64_t(t); i >= 0 && !on_skeleton[size_t(i)]; i = pred[size_t(i)]) on_skeleton[size_t(i)] = 1;
+  VoxelSolid thin = solid;
+  auto thin_with_marks = [&] {
+    thin = solid;
+    std::vector<size_t> anchors;
+    for (size_t i = 0; i < n; ++i)
+      if (marked[i]) anchors.push_back(i);
+    thin_to_anchors(thin, anchors, dt);
   };
-  for (size_t t : tips) add_path(t);
+  thin_with_marks();
   // Second pass: one more branching level where the hull is far from the skeleton.
-  for (int e = 0; e < params.extra_branches; ++e) {
+  double dt_max = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    if (grid.occupied[i]) dt_max = std::max(dt_max, dt[i] + 1.0);
+  if (params.extra_branches > 0) {
     std::vector<size_t> sk;
     for (size_t i = 0; i < n; ++i)
-      if (on_skeleton[i]) sk.push_back(i);
+      if (thin.occupied[i]) sk.push_back(i);
     std::vector<double> away = dijkstra(G, sk, [](size_t) { return 1.0; }, nullptr);
-    size_t best = n;
-    double bd = 0.0;
-    for (size_t i = 0; i < n; ++i)
-      if (grid.occupied[i] && std::isfinite(away[i]) && std::isfinite(cost[i]) && away[i] > bd) bd = away[i], best = i;
-    // Stop when every hull cell is within a few cells (and its own depth) of the skeleton.
-    if (best == n || bd < std::max(4.0, 0.5 * dt_max)) break;
-    add_path(best);
+    for (int e = 0; e < params.extra_branches; ++e) {
+      size_t best = n;
+      double bd = 0.0;
+      for (size_t i = 0; i < n; ++i)
+        if (grid.occupied[i] && std::isfinite(reach[i]) && away[i] > bd) bd = away[i], best = i;
+      if (best == n || bd < std::max(4.0, 0.5 * dt_max)) break;
+      marked[best] = 1;
+      ++out.second_pass;
+      std::vector<double> from_new = dijkstra(G, {best}, [](size_t) { return 1.0; }, nullptr);
+      for (size_t i = 0; i < n; ++i) away[i] = std::min(away[i], from_new[i]);
+    }
+    if (out.second_pass) thin_with_marks();
   }
+  for (uint8_t m : marked) out.marks += m;
 
-  // Voxel paths -> graph, checked segment by segment against the exact hull.
+  std::vector<int64_t> parent = skeleton_tree(set, grid, thin, marked, base);
   std::vector<glm::dvec3> pos(n);
-  std::vector<int64_t> parent(n, -1);
   for (size_t i = 0; i < n; ++i) {
-    if (!on_skeleton[i]) continue;
+    if (parent[i] == -2) {
+      parent[i] = -1;
+      continue;
+    }
     glm::ivec3 c = G.cell(i);
     pos[i] = grid.center(c.x, c.y, c.z);
-    if (i != base) parent[i] = pred[i];
   }
-  for (size_t i = 0; i < n; ++i)
-    if (on_skeleton[i] && i != base && !segment_inside_hull(set, pos[size_t(parent[i])], pos[i])) parent[i] = -1;
   std::vector<int64_t> map;
   TreeGraph full = rooted_tree(pos, parent, base, &map);
   std::vector<uint8_t> full_marked(full.nodes.size(), 0);

@@ -1,20 +1,20 @@
 // Skeleton from the visual hull (seed 003 step 3).
-// 1. "Interesting points" per view: vertices of the convex hull of the silhouette, ranked by
-//    the sharpness of the hull corner and by the pockets of the edges next to it (pocket
-//    depth = how far the outline falls back from the hull edge; long edges count too). The
-//    best ones are branch tips seen in that view.
-// 2. Tips are lifted to 3D on the hull along their pixel rays.
-// 3. Medial axis: [ours] instead of the paper's Voronoi-node thinning we thin the hull's voxel
-//    graph to the penalized shortest-path tree of TEASAR (Sato et al. 2000): Dijkstra from the
-//    trunk base with a step cost that explodes near the hull boundary, so paths run along the
-//    medial axis; the union of the paths from the marked nodes (tips, base) to the base is the
-//    skeleton -- a tree by construction, keeping every marked node. A second pass adds one
-//    more branching level: the hull voxel farthest from the current skeleton (outside a
-//    tube of radius ~ its distance to the boundary) adds its path, repeatedly.
-// 4. Chains are simplified where the shortcut stays inside the hull (exact segment test).
+// 1. Tips per view: the interesting points of each mask's outline, from the hierarchy of its
+//    convex hulls (outline_tips.h), lifted to 3D on the hull along their pixel rays.
+// 2. Approximate medial axis: the hull's voxels are thinned in order of their distance to the
+//    hull boundary, keeping the topology and the marked voxels (the one nearest to each tip and
+//    to the trunk base) -- distance-ordered homotopic thinning (voxel_thinning.h). What is
+//    left are thin curves along the medial axis joining the marked voxels.
+// 3. Graph: the remaining voxels with 26-adjacency, thinned to a tree -- a breadth-first tree
+//    from the base, then unmarked end nodes removed until every end is marked.
+// 4. Second pass, one more branching level: the hull voxels farthest from that skeleton (each
+//    farther than max(4 cells, half the largest boundary distance), greedily, at most
+//    `extra_branches`) are marked too and the hull is thinned again with all marks.
+// 5. Voxel chains are simplified where the shortcut stays inside the hull (exact segment test).
 #pragma once
 #include <vector>
 
+#include "generators/methods/outline_tips.h"
 #include "generators/methods/visual_hull_hull.h"
 #include "generators/tree/tree_graph.h"
 
@@ -23,17 +23,16 @@ namespace forest {
 struct SkeletonParams {
   int voxels = 48;           // voxel cells along the longest side of the bounds
   int tips_per_view = 6;     // interesting points kept per view
-  int extra_branches = 8;    // second-pass paths (one more branching level)
-  double min_tip_separation = 0.08;  // of the mask diagonal, between tips of one view
+  int extra_branches = 8;    // second-pass marks (one more branching level)
+  OutlineTipParams tips;
 };
-
-// Interesting points of one mask (pixel centres), best first, at most `count`.
-std::vector<glm::dvec2> interesting_points(const Mask& mask, int count, double min_separation);
 
 struct HullSkeleton {
   TreeGraph graph;                // node 0 = trunk base; parent < own index; radii 0
-  std::vector<uint32_t> marked;   // nodes that were tips or the base (kept by thinning)
+  std::vector<uint32_t> marked;   // nodes that were tips, second-pass ends or the base
   size_t lifted_tips = 0;         // tips found on the hull (before merging duplicates)
+  size_t marks = 0;               // distinct marked voxels (all of them are kept as nodes)
+  size_t second_pass = 0;         // marks added by the second pass
 };
 
 HullSkeleton hull_skeleton(const ViewSet& set, const VoxelGrid& grid, const SkeletonParams& params);

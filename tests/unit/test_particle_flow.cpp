@@ -213,3 +213,37 @@ TEST(ParticleFlow, BadInputsNameFileAndKey) {
   expect("crown = { shape = \"ellipsoid\", height = nan }\n", "crown.height");
   fs::remove_all(d);
 }
+
+TEST(ParticleFlow, SvgAttractorsGiveTheSameTreeAsJson) {
+  // write_view_set writes the attractors inline (views.json) and as one SVG per view
+  // (views_svg.json): the two files must give the same tree, bit for bit.
+  fs::path d = fs::temp_directory_path() / ("forest_pf_svg_" + std::to_string(::getpid()));
+  write_view_set(small_views(64), d, true);
+  ASSERT_TRUE(fs::exists(d / "view0_attractors.svg"));
+  ViewSet json = load_view_set(d / "views.json"), svg = load_view_set(d / "views_svg.json");
+  ASSERT_EQ(json.views.size(), svg.views.size());
+  for (size_t v = 0; v < json.views.size(); ++v) {
+    ASSERT_FALSE(json.views[v].attractors.empty());
+    EXPECT_EQ(json.views[v].attractors, svg.views[v].attractors) << "view " << v;
+  }
+  auto tree = [&](const std::string& views) {
+    return generate_from_species_text("method = \"particle-flow\"\nviews = \"" + (d / views).string() +
+                                          "\"\nparticles = 150\niterations = 60\nvoxels = 12\n",
+                                      "pf.toml");
+  };
+  TreeModel a = tree("views.json"), b = tree("views_svg.json");
+  ASSERT_GT(a.branches.vertices.size(), 0u);
+  ASSERT_EQ(a.branches.vertices.size(), b.branches.vertices.size());
+  EXPECT_EQ(0, std::memcmp(a.branches.vertices.data(), b.branches.vertices.data(),
+                           a.branches.vertices.size() * sizeof(a.branches.vertices[0])));
+  EXPECT_EQ(a.branches.indices, b.branches.indices);
+  // A broken SVG names the SVG file and its line.
+  std::ofstream(d / "view0_attractors.svg") << "<svg>\n<path d=\"M 0 0 Q 1 1 2 2\"/>\n</svg>\n";
+  try {
+    load_view_set(d / "views_svg.json");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("view0_attractors.svg:2"), std::string::npos) << e.what();
+  }
+  fs::remove_all(d);
+}

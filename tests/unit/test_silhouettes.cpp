@@ -2,6 +2,7 @@
 // fill-in, Gibbs placement, generation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -11,6 +12,7 @@
 #include "generators/methods/methods.h"
 #include "generators/methods/silhouettes_method.h"
 #include "generators/methods/silhouettes_placement.h"
+#include "generators/methods/silhouettes_style.h"
 
 using namespace forest;
 
@@ -227,8 +229,91 @@ TEST(Silhouettes, InputErrors) {
   fails(R"({"strokes": [{"id": "t", "role": "axis", "points": [[0, 0], [0, 1]]},
         {"id": "c", "role": "crown", "points": [[0, 0], [1, 1], [2, 2]]}]})", "role");
   auto dir = std::filesystem::path(FOREST_SOURCE_DIR) / "scenes" / "species";
-  for (const char* name : {"silhouettes_round", "silhouettes_poplar"}) {
+  for (const char* name : {"silhouettes_round", "silhouettes_poplar_hero"}) {
     TreeModel m = generate_from_species(dir / (std::string(name) + ".toml"));
     EXPECT_GT(m.leaves.size(), 0u) << name;
   }
+}
+
+TEST(Silhouettes, StyleIsMeasuredFromTheChildren) {
+  Polyline2 axis(std::vector<glm::dvec2>{{0, 0}, {0, 10}});
+  std::vector<Branch2D> kids;
+  const double ts[] = {0.2, 0.35, 0.5, 0.65}, deg[] = {80, 70, 60, 50};
+  for (int i = 0; i < 4; ++i) {
+    Branch2D b;
+    b.t = ts[i];
+    glm::dvec2 base(0, 10 * ts[i]);
+    b.curve = {base, base + rotate({0, 1}, i % 2 ? deg[i] : -deg[i])};  // both sides
+    kids.push_back(b);
+  }
+  std::vector<const Branch2D*> ptr;
+  for (const Branch2D& b : kids) ptr.push_back(&b);
+  BranchingStyle s = measure_style(axis, ptr);
+  EXPECT_EQ(s.children, 4u);
+  EXPECT_NEAR(s.unbranched, 0.2, 1e-12);
+  EXPECT_NEAR(s.spacing_mean, 0.15, 1e-12);
+  EXPECT_NEAR(s.spacing_sd, 0.0, 1e-12);
+  EXPECT_NEAR(s.baf(0.35), 70.0, 1e-9);
+  EXPECT_NEAR(s.baf(0.425), 65.0, 1e-9);
+}
+
+TEST(Silhouettes, StylePositionsFollowTheSourceStatistics) {
+  BranchingStyle s;
+  s.children = 5;
+  s.unbranched = 0.1;
+  s.spacing_mean = 0.05;
+  s.spacing_sd = 0.01;
+  std::vector<double> gaps;
+  for (uint64_t seed = 0; seed < 200; ++seed) {
+    Rng rng(seed, 3);
+    std::vector<double> t = style_positions(s, rng);
+    ASSERT_FALSE(t.empty());
+    EXPECT_EQ(t.front(), 0.1);  // the unbranched range
+    EXPECT_LE(t.back(), 1.0);
+    for (size_t i = 1; i < t.size(); ++i) gaps.push_back(t[i] - t[i - 1]);
+  }
+  double mean = 0.0, var = 0.0;
+  for (double g : gaps) mean += g / double(gaps.size());
+  for (double g : gaps) var += (g - mean) * (g - mean) / double(gaps.size());
+  EXPECT_NEAR(mean, 0.05, 0.0015);
+  EXPECT_NEAR(std::sqrt(var), 0.01, 0.0015);
+}
+
+TEST(Silhouettes, StyleCopyPlacesSiblingsChildrenByTheSourceStyle) {
+  SilhouetteParams sp;
+  sp.levels = 2;
+  std::vector<SilhouetteNode> h = infer_hierarchy(silhouettes_synthetic_drawing("round"), sp);
+  int source = -1;
+  for (int c : h[0].children)
+    if (h[size_t(c)].branch.sketched) source = c;
+  ASSERT_GE(source, 0);
+  Polyline2 src_axis(h[size_t(source)].branch.curve);
+  std::vector<const Branch2D*> kids;
+  for (int c : h[size_t(source)].children) kids.push_back(&h[size_t(c)].branch);
+  BranchingStyle style = measure_style(src_axis, kids);
+  ASSERT_GE(style.children, 2u);
+  Rng rng(5, 1);
+  size_t restyled = copy_style(h, source, rng, 100000);
+  EXPECT_GE(restyled, 3u);
+  size_t checked = 0;
+  for (int k : h[0].children) {
+    if (k == source || h[size_t(k)].children.empty()) continue;
+    Polyline2 axis(h[size_t(k)].branch.curve);
+    std::vector<double> ts;
+    for (int c : h[size_t(k)].children) {
+      const Branch2D& b = h[size_t(c)].branch;
+      EXPECT_EQ(h[size_t(c)].parent, k);
+      ts.push_back(b.t);
+      EXPECT_NEAR(glm::length(b.curve.front() - axis.at(b.t)), 0.0, 1e-9);  // on the target
+      // Its start makes the source's BAF with the target's tangent.
+      glm::dvec2 d = glm::normalize(b.curve[1] - b.curve[0]), tan = axis.tangent(b.t);
+      double angle = std::acos(std::clamp(glm::dot(d, tan), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+      EXPECT_NEAR(angle, style.baf(b.t), 1e-6);
+      ++checked;
+    }
+    std::sort(ts.begin(), ts.end());
+    EXPECT_NEAR(ts.front(), style.unbranched, 1e-12);  // the source's unbranched range
+    for (size_t i = 1; i < ts.size(); ++i) EXPECT_GE(ts[i] - ts[i - 1], 0.02 - 1e-12);
+  }
+  EXPECT_GT(checked, 5u);
 }

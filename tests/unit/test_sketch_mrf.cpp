@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "generators/bake/asset_io.h"
@@ -13,6 +15,7 @@
 #include "generators/methods/sketch_mrf_method.h"
 #include "generators/methods/sketch_propagation.h"
 #include "generators/methods/sketch_templates.h"
+#include "generators/methods/strokes_io.h"
 
 using namespace forest;
 
@@ -192,4 +195,30 @@ TEST(SketchMrf, PresetsReadCommittedInputs) {
     EXPECT_GT(m.branches.indices.size(), 0u) << name;
     EXPECT_GT(m.leaves.size(), 0u) << name;
   }
+}
+
+TEST(SketchMrf, SvgAndJsonOfTheSameStrokesGiveTheSameTree) {
+  // The same polylines (at the 4 decimals SVG keeps) as JSON and as SVG.
+  Drawing d = read_drawing(std::filesystem::path(FOREST_SOURCE_DIR) / "scenes/inputs/sketch-mrf/maple.json");
+  for (Stroke& s : d.strokes) {
+    for (glm::dvec2& p : s.points) p = glm::round(p * 1e4) / 1e4;
+    s.depth.clear();
+  }
+  auto dir = std::filesystem::temp_directory_path() / ("forest_sk_svg_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "s.json") << drawing_to_json(d);
+  std::ofstream(dir / "s.svg") << drawing_to_svg(d);
+  auto tree = [&](const char* file) {
+    return generate_from_species_text("method = \"sketch-mrf\"\nstrokes = \"" + (dir / file).string() +
+                                          "\"\ngenerations = 0\nem_iterations = 2\n",
+                                      "sk.toml");
+  };
+  TreeModel a = tree("s.json"), b = tree("s.svg");
+  ASSERT_GT(a.branches.vertices.size(), 0u);
+  ASSERT_EQ(a.branches.vertices.size(), b.branches.vertices.size());
+  EXPECT_EQ(0, std::memcmp(a.branches.vertices.data(), b.branches.vertices.data(),
+                           a.branches.vertices.size() * sizeof(a.branches.vertices[0])));
+  EXPECT_EQ(a.branches.indices, b.branches.indices);
+  EXPECT_EQ(a.leaves.size(), b.leaves.size());
+  std::filesystem::remove_all(dir);
 }

@@ -81,6 +81,22 @@ TEST(Strokes, SvgPolylinesAndPathsFlipY) {
   EXPECT_EQ(back.strokes[2].parent, "t");
 }
 
+TEST(Strokes, SvgHorizontalVerticalPolygonAndLine) {
+  const char* svg = R"(<svg xmlns="http://www.w3.org/2000/svg">
+  <!-- a comment with <polyline points="9,9 9,9"/> inside is not a stroke -->
+  <g id="layer"><path id="p" d="M0,0 H 2 V -3 h -1 v 1"/></g>
+  <polygon id="q" class="silhouette" points="0,0 2,0 2,-2"/>
+  <line id="l" x1="1" y1="-1" x2="4" y2="-5"/>
+</svg>)";
+  Drawing d = parse_drawing_svg(svg, "s.svg");
+  ASSERT_EQ(d.strokes.size(), 3u);
+  EXPECT_EQ(d.strokes[0].points, std::vector<glm::dvec2>({{0, 0}, {2, 0}, {2, 3}, {1, 3}, {1, 2}}));
+  EXPECT_EQ(d.strokes[0].line, 3);
+  EXPECT_EQ(d.strokes[1].points, std::vector<glm::dvec2>({{0, 0}, {2, 0}, {2, 2}, {0, 0}}));  // closed
+  EXPECT_EQ(d.strokes[1].role, "silhouette");
+  EXPECT_EQ(d.strokes[2].points, std::vector<glm::dvec2>({{1, 1}, {4, 5}}));
+}
+
 TEST(Strokes, ErrorsNameFileLineAndKey) {
   const std::string t = "{\"id\": \"t\", \"points\": [[0, 0], [0, 5]]}";
   expect_json_error("{\"strokes\": [", {"d.json:1", "JSON syntax"});
@@ -113,6 +129,14 @@ TEST(Strokes, ErrorsNameFileLineAndKey) {
   svg_error("<polyline points=\"0,0 1\"/>", "odd number");
   svg_error("<polyline points=\"0,0 nan,1\"/>", "finite");
   svg_error("<polyline points=\"0,0 1,x\"/>", "malformed");
+  svg_error("<g transform=\"scale(2)\"><polyline points=\"0,0 1,1\"/></g>", "transforms are not supported");
+  svg_error("<polyline transform=\"translate(1 0)\" points=\"0,0 1,1\"/>", "transform");
+  svg_error("<ellipse cx=\"0\" cy=\"0\" rx=\"1\" ry=\"2\"/>", "unsupported element");
+  svg_error("<path d=\"M 0 0 A 1 1 0 0 1 2 2\"/>", "unsupported path command 'A'");
+  svg_error("<path d=\"L 0 0 1 1\"/>", "starts with M");
+  svg_error("<path d=\"M 0 0 H\"/>", "");
+  svg_error("<line x1=\"0\" y1=\"0\" x2=\"1\"/>", "y2");
+  svg_error("<!-- never closed", "unterminated");
   EXPECT_THROW(parse_drawing_svg("<html></html>", "s.svg"), InputError);
 
   auto dir = std::filesystem::temp_directory_path() / "forest_test_strokes";

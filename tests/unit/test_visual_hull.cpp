@@ -15,6 +15,7 @@
 #include "generators/methods/image_tree_util.h"
 #include "generators/methods/methods.h"
 #include "generators/methods/visual_hull_growth.h"
+#include "generators/methods/voxel_thinning.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
@@ -110,14 +111,45 @@ TEST(VisualHull, SegmentTestIsExactOnAConcaveSilhouette) {
   EXPECT_TRUE(segment_inside_hull(set, {-0.6, -0.6, 0.0}, {0.6, -0.6, 0.0}));
 }
 
-TEST(VisualHull, InterestingPointsSitOnTheLobes) {
+// A mask from a polygon (pixel coordinates, v down): pixel centres inside (even-odd rule).
+static Mask polygon_mask(int size, const std::vector<glm::dvec2>& poly) {
+  Mask m;
+  m.width = m.height = size;
+  m.alpha.assign(size_t(size * size), 0.0f);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      glm::dvec2 p(i + 0.5, j + 0.5);
+      bool in = false;
+      for (size_t k = 0, l = poly.size() - 1; k < poly.size(); l = k++)
+        if ((poly[k].y > p.y) != (poly[l].y > p.y) &&
+            p.x < poly[l].x + (poly[k].x - poly[l].x) * (p.y - poly[l].y) / (poly[k].y - poly[l].y))
+          in = !in;
+      if (in) m.alpha[size_t(j * size + i)] = 1.0f;
+    }
+  return m;
+}
+
+TEST(VisualHull, OutlineIsTracedInOrderAroundTheLargestComponent) {
+  Mask m = polygon_mask(40, {{5, 5}, {25, 5}, {25, 30}, {5, 30}});  // 20 x 25 pixels
+  m.alpha[size_t(38 * 40 + 38)] = 1.0f;                               // a stray pixel elsewhere
+  auto outline = trace_outline(m);
+  ASSERT_EQ(outline.size(), size_t(2 * (20 + 25) - 4));  // every rim pixel once
+  for (size_t k = 0; k < outline.size(); ++k) {
+    glm::dvec2 step = outline[(k + 1) % outline.size()] - outline[k];
+    EXPECT_LE(std::max(std::abs(step.x), std::abs(step.y)), 1.0) << k;  // 8-connected, closed
+    EXPECT_LT(outline[k].x, 26.0);
+  }
+}
+
+TEST(VisualHull, OutlineTipsAreExactlyTheLobesBetweenPockets) {
+  // A disc with five lobes: five pockets of the hull, one tip per lobe, nothing else.
   Mask m;
   m.width = m.height = 128;
   m.alpha.assign(size_t(128 * 128), 0.0f);
   std::vector<glm::dvec2> lobe;
   for (int k = 0; k < 5; ++k) {
     double a = glm::radians(90.0 + 72.0 * k);
-    lobe.push_back({64 + 40 * std::cos(a), 64 - 40 * std::sin(a)});
+    lobe.push_back({64 + 30 * std::cos(a), 64 - 30 * std::sin(a)});
   }
   for (int j = 0; j < 128; ++j)
     for (int i = 0; i < 128; ++i) {
@@ -126,17 +158,93 @@ TEST(VisualHull, InterestingPointsSitOnTheLobes) {
       for (glm::dvec2 c : lobe) in = in || glm::length(p - c) < 11;
       if (in) m.alpha[size_t(j * 128 + i)] = 1.0f;
     }
-  auto tips = interesting_points(m, 5, 0.08);
+  auto tips = outline_tips(m, OutlineTipParams{});
   ASSERT_EQ(tips.size(), 5u);
   std::set<int> lobes_hit;
-  for (glm::dvec2 t : tips) {
-    int nearest = -1;
-    for (int k = 0; k < 5; ++k)
-      if (glm::length(t - lobe[size_t(k)]) <= 11.5) nearest = k;
-    EXPECT_GE(nearest, 0) << t.x << " " << t.y;
-    lobes_hit.insert(nearest);
+  for (const OutlineTip& t : tips) {
+    EXPECT_EQ(t.level, 0);
+    EXPECT_GT(t.depth, 5.0);  // it sits between real pockets
+    for (int k = 0; k < 5; ++k) {
+      glm::dvec2 outward = glm::normalize(lobe[size_t(k)] - glm::dvec2(64, 64));
+      // On the lobe's outer rim: within a pixel of radius 11 around the lobe centre, outward.
+      if (glm::length(t.pixel - lobe[size_t(k)]) <= 12.0 && glm::dot(t.pixel - lobe[size_t(k)], outward) > 8.0)
+        lobes_hit.insert(k);
+    }
   }
-  EXPECT_GE(lobes_hit.size(), 3u);
+  EXPECT_EQ(lobes_hit.size(), 5u);
+}
+
+TEST(VisualHull, OutlineTipsRecurseIntoDeepPockets) {
+  // Two tall pointed lobes with a deep notch between them and a short lobe standing in the
+  // notch; flat bottom holding the trunk foot. Level 0 gives the two tall apexes, the notch
+  // (a deep pocket) holds the short lobe: its apex is a level-2 tip. The bottom corners are
+  // the ends of the hull edge at the foot: no tips.
+  Mask m = polygon_mask(128, {{20, 10}, {40, 90}, {56, 90}, {64, 50}, {72, 90}, {88, 90}, {108, 10},
+                              {118, 118}, {10, 118}});
+  auto tips = outline_tips(m, OutlineTipParams{}, glm::dvec2(64, 118));
+  ASSERT_EQ(tips.size(), 3u);
+  // Pixel centres inside the pointed apexes lie a few pixels below the polygon's corners.
+  auto near = [](glm::dvec2 a, glm::dvec2 b) { return glm::length(a - b) < 5.0; };
+  EXPECT_EQ(tips[0].level, 0);
+  EXPECT_EQ(tips[1].level, 0);
+  EXPECT_TRUE((near(tips[0].pixel, {20, 10.5}) && near(tips[1].pixel, {108, 10.5})) ||
+              (near(tips[1].pixel, {20, 10.5}) && near(tips[0].pixel, {108, 10.5})))
+      << tips[0].pixel.x << "," << tips[0].pixel.y << " " << tips[1].pixel.x << "," << tips[1].pixel.y;
+  EXPECT_EQ(tips[2].level, 2);
+  EXPECT_TRUE(near(tips[2].pixel, {64, 51})) << tips[2].pixel.x << "," << tips[2].pixel.y;
+  EXPECT_NEAR(tips[2].depth, 40.0, 3.0);  // the short lobe's height above the notch floor
+  // Without recursion the notch lobe is not found; a convex blob has a single tip, the point
+  // farthest from the foot.
+  OutlineTipParams flat;
+  flat.max_level = 0;
+  EXPECT_EQ(outline_tips(m, flat, glm::dvec2(64, 118)).size(), 2u);
+  Mask blob;
+  blob.width = blob.height = 64;
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i)
+      blob.alpha.push_back(glm::length((glm::dvec2(i + 0.5, j + 0.5) - glm::dvec2(32, 34)) / glm::dvec2(14, 24)) < 1.0 ? 1.0f : 0.0f);
+  auto one = outline_tips(blob, OutlineTipParams{}, glm::dvec2(32, 58));
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_LT(one[0].pixel.y, 11.0);
+}
+
+TEST(VisualHull, ThinningKeepsAnchorsAndTopologyAlongTheMedialAxis) {
+  // A solid box 21 x 9 x 9: thinned with its two end-face centres as anchors, what is left is
+  // one simple 26-connected curve between them, on the box's axis where the axis is the
+  // medial axis (away from the end faces, whose corners tie in distance).
+  VoxelSolid box;
+  box.dims = {25, 13, 13};
+  box.occupied.assign(size_t(25 * 13 * 13), 0);
+  for (int z = 2; z < 11; ++z)
+    for (int y = 2; y < 11; ++y)
+      for (int x = 2; x < 23; ++x) box.occupied[box.index({x, y, z})] = 1;
+  std::vector<double> dt = boundary_distance(box);
+  EXPECT_EQ(dt[box.index({12, 6, 6})], 4.0);
+  EXPECT_TRUE(is_simple_voxel(box, {2, 2, 2}));  // a corner goes without changing topology
+  size_t a = box.index({2, 6, 6}), b = box.index({22, 6, 6});
+  VoxelSolid thin = box;
+  thin_to_anchors(thin, {a, b}, dt);
+  size_t left = 0;
+  for (size_t i = 0; i < thin.occupied.size(); ++i) {
+    if (!thin.occupied[i]) continue;
+    ++left;
+    glm::ivec3 c = thin.cell(i);
+    int neighbours = 0;
+    for (int k = 0; k < 27; ++k) neighbours += k != 13 && thin.at(c + glm::ivec3(k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1));
+    EXPECT_EQ(neighbours, i == a || i == b ? 1 : 2) << c.x << " " << c.y << " " << c.z;  // a simple curve
+    if (c.x >= 7 && c.x <= 17) {
+      EXPECT_EQ(c.y, 6);
+      EXPECT_EQ(c.z, 6);
+    }
+  }
+  EXPECT_GE(left, 21u);
+  EXPECT_LE(left, 25u);
+  // Without anchors a solid shrinks to one voxel (topology of a ball).
+  VoxelSolid ball = box;
+  thin_to_anchors(ball, {}, dt);
+  size_t ones = 0;
+  for (uint8_t o : ball.occupied) ones += o;
+  EXPECT_EQ(ones, 1u);
 }
 
 TEST(VisualHull, SkeletonIsOneTreeInsideTheHullKeepingMarkedNodes) {
@@ -146,16 +254,37 @@ TEST(VisualHull, SkeletonIsOneTreeInsideTheHullKeepingMarkedNodes) {
   ASSERT_GT(sk.graph.nodes.size(), 10u);
   EXPECT_TRUE(is_rooted_tree(sk.graph));  // connected and acyclic: parent < child, one root
   EXPECT_GE(sk.marked.size(), 4u);
-  EXPECT_EQ(sk.marked.front(), 0u);  // the base
+  EXPECT_EQ(sk.marked.size(), sk.marks);  // every marked voxel is a node
+  EXPECT_GT(sk.second_pass, 0u);          // the second pass added a branching level
+  EXPECT_EQ(sk.marked.front(), 0u);       // the base
   auto children = children_of(sk.graph);
+  std::set<uint32_t> marked(sk.marked.begin(), sk.marked.end());
   size_t tips = 0;
-  for (uint32_t m : sk.marked) tips += m != 0 && children[m].empty();
-  EXPECT_GE(tips, 3u);  // marked tips are skeleton tips
+  for (size_t i = 1; i < sk.graph.nodes.size(); ++i)
+    if (children[i].empty()) {
+      EXPECT_TRUE(marked.count(uint32_t(i))) << "unmarked end " << i;  // thinned away otherwise
+      ++tips;
+    }
+  EXPECT_GE(tips, 3u);
   for (size_t i = 1; i < sk.graph.nodes.size(); ++i)
     EXPECT_TRUE(segment_inside_hull(set, glm::dvec3(sk.graph.nodes[size_t(sk.graph.nodes[i].parent)].position),
                                     glm::dvec3(sk.graph.nodes[i].position)));
   // The base is at the foot of the tree.
   EXPECT_LT(sk.graph.nodes[0].position.y, 0.5f);
+  // Inner skeleton nodes run along the medial axis: deeper in the hull than its average voxel.
+  VoxelSolid solid{grid.dims, grid.occupied};
+  std::vector<double> dt = boundary_distance(solid);
+  double hull_mean = 0.0, inner_mean = 0.0;
+  size_t hull_count = 0, inner_count = 0;
+  for (size_t i = 0; i < dt.size(); ++i)
+    if (grid.occupied[i]) hull_mean += dt[i], ++hull_count;
+  for (size_t i = 1; i < sk.graph.nodes.size(); ++i) {
+    if (children[i].size() != 1 || marked.count(uint32_t(i))) continue;
+    glm::ivec3 c(glm::floor((glm::dvec3(sk.graph.nodes[i].position) - grid.origin) / grid.cell));
+    inner_mean += dt[solid.index(c)], ++inner_count;
+  }
+  ASSERT_GT(inner_count, 5u);
+  EXPECT_GT(inner_mean / double(inner_count), 1.5 * hull_mean / double(hull_count));
 }
 
 TEST(VisualHull, GrowthStaysInsideRegrowsShorterAndConservesFlow) {
