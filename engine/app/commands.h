@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/render/pr_bake.h"
 
@@ -36,6 +37,19 @@ struct MakeInputsArgs {
   std::string out;
 };
 int run_make_inputs(const MakeInputsArgs& args);
+
+struct LearnArgs {
+  std::string out;
+  std::optional<uint64_t> seed;
+  std::vector<std::string> species;  // sample trees generated from these presets ...
+  std::string samples;               // ... or read from a sample file ...
+  bool ground_truth = false;         // ... or drawn from the synthetic ground truth
+  std::optional<size_t> trees;       // trees per species / ground-truth trees
+  int stem_plantons = 8;             // k-means k per organ type
+  int leaf_plantons = 2;
+  double e_max = 16.0;
+};
+int run_learn(const LearnArgs& args);
 
 struct PreviewArgs {
   std::string model;

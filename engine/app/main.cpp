@@ -32,6 +32,20 @@ int main(int argc, char** argv) {
   auto* inputs_cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
   inputs_cmd->add_option("--out", inputs.out, "Output folder (one subfolder per method)")->required();
 
+  app::LearnArgs learn;
+  uint64_t learn_seed = 0;
+  size_t learn_trees = 0;
+  auto* learn_cmd = cli.add_subcommand("learn", "Learn plantons and transitions from sample trees (method plantons) into a model file");
+  learn_cmd->add_option("--out", learn.out, "Output model (.json)")->required();
+  auto* learn_seed_opt = learn_cmd->add_option("--seed", learn_seed, "Seed of k-means and of the sample trees (default 1)");
+  learn_cmd->add_option("--species", learn.species, "Sample trees from these species presets (any method)")->check(CLI::ExistingFile);
+  learn_cmd->add_option("--samples", learn.samples, "Sample file (JSON trees, see forest make-inputs)")->check(CLI::ExistingFile);
+  learn_cmd->add_flag("--ground-truth", learn.ground_truth, "Sample trees from the synthetic ground truth (plantons T, P, S, L)");
+  auto* learn_trees_opt = learn_cmd->add_option("--trees", learn_trees, "Trees per species, or ground-truth trees")->check(CLI::Range(1, 64));
+  learn_cmd->add_option("--stem-plantons", learn.stem_plantons, "k-means k for stems")->check(CLI::Range(1, 500));
+  learn_cmd->add_option("--leaf-plantons", learn.leaf_plantons, "k-means k for leaves")->check(CLI::Range(1, 500));
+  learn_cmd->add_option("--e-max", learn.e_max, "Organs farther than this from their planton start a new one")->check(CLI::Range(0.01, 1e6));
+
   app::PreviewArgs preview;
   auto* preview_cmd = cli.add_subcommand("preview", "Render a turntable contact sheet of a .glb model");
   preview_cmd->add_option("model", preview.model, "Model (.glb)")->required();
@@ -127,6 +141,11 @@ int main(int argc, char** argv) {
       return app::run_generate(gen);
     }
     if (*inputs_cmd) return app::run_make_inputs(inputs);
+    if (*learn_cmd) {
+      if (*learn_seed_opt) learn.seed = learn_seed;
+      if (*learn_trees_opt) learn.trees = learn_trees;
+      return app::run_learn(learn);
+    }
     if (*preview_cmd) return app::run_preview(preview);
     if (*gallery_cmd) return app::run_gallery(gallery);
     if (*bake_cmd) {

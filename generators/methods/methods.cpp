@@ -9,6 +9,9 @@
 #include "generators/methods/mig_method.h"
 #include "generators/methods/mgv_method.h"
 #include "generators/methods/magnetic_method.h"
+#include "generators/methods/model_builder.h"
+#include "generators/methods/plantons_method.h"
+#include "generators/methods/plantons_samples.h"
 
 namespace forest {
 
@@ -24,6 +27,7 @@ const MethodEntry kMethods[] = {
     {"mig", generate_mig, mig_default_species_text, nullptr},
     {"mgv", generate_mgv, mgv_default_species_text, nullptr},
     {"magnetic", generate_magnetic, magnetic_default_species_text, nullptr},
+    {"plantons", generate_plantons, plantons_default_species_text, plantons_make_inputs},
 };
 
 const MethodEntry* find_method(const std::string& id) {
@@ -48,7 +52,10 @@ TreeModel generate(const TomlDocument& doc, const std::string& species_name,
     if (int(key.source().begin.line) < method_line)
       throw InputError(doc.name(), int(key.source().begin.line), std::string(key.str()),
                        "`method` must be the first key of a species file");
-  if (const MethodEntry* m = find_method(method)) return m->generate(root, species_name, options);
+  if (const MethodEntry* m = find_method(method)) {
+    SkeletonCapture capture(options.skeleton);
+    return m->generate(root, species_name, options);
+  }
   root.fail("method", "unknown method '" + method + "' (known: " + known_methods() + ")");
 }
 

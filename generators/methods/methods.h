@@ -16,6 +16,7 @@ class TomlTable;
 
 struct GenerateOptions {
   std::optional<uint64_t> seed;  // overrides the preset's seed when set
+  TreeGraph* skeleton = nullptr;  // when set, receives the skeleton the model was meshed from
 };
 
 // One modeling method. Each lives in generators/methods/<id>_method.{h,cpp} and has one

@@ -33,8 +33,16 @@ nlohmann::json toml_to_json(const toml::table& table) {
   return out;
 }
 
+namespace {
+thread_local TreeGraph* g_skeleton_sink = nullptr;
+}  // namespace
+
+SkeletonCapture::SkeletonCapture(TreeGraph* sink) : previous(g_skeleton_sink) { g_skeleton_sink = sink; }
+SkeletonCapture::~SkeletonCapture() { g_skeleton_sink = previous; }
+
 TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
                            const MesherParams& mesher) {
+  if (g_skeleton_sink) *g_skeleton_sink = graph;
   TreeModel model;
   model.branches = mesh_branches(graph, mesher);
   optimize_mesh(model.branches);

@@ -33,6 +33,17 @@ struct ModelDescription {
 TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& description,
                            const MesherParams& mesher = {});
 
+// While alive, every build_tree_model on this thread also copies the graph it meshes into
+// *sink: how generate_from_species hands out a method's skeleton (GenerateOptions::skeleton,
+// used by `forest learn`) without every method passing it along.
+struct SkeletonCapture {
+  explicit SkeletonCapture(TreeGraph* sink);
+  ~SkeletonCapture();
+  SkeletonCapture(const SkeletonCapture&) = delete;
+  SkeletonCapture& operator=(const SkeletonCapture&) = delete;
+  TreeGraph* previous = nullptr;
+};
+
 // Species keys ring_sides_min / ring_sides_max (shared by every method); the current values
 // of `mesher` are the defaults. InputError naming the key when out of range or crossed.
 void read_ring_sides(const TomlTable& species, MesherParams& mesher);

@@ -202,6 +202,52 @@ TEST_F(CliTest, GenerateIsDeterministic) {
   EXPECT_NE(a, c);
 }
 
+TEST_F(CliTest, LearnThenGeneratePlantons) {
+  fs::path model = dir_ / "m.json";
+  Result l = run("learn --ground-truth --trees 2 --seed 3 --out '" + model.string() + "'");
+  ASSERT_EQ(l.code, 0) << l.err;
+  EXPECT_NE(l.out.find("plantons after k-means"), std::string::npos) << l.out;
+  std::string text = slurp(model);
+  EXPECT_NE(text.find("\"forest-plantons\""), std::string::npos);
+  // Same seed, same bytes.
+  ASSERT_EQ(run("learn --ground-truth --trees 2 --seed 3 --out '" + (dir_ / "m2.json").string() + "'").code, 0);
+  EXPECT_EQ(slurp(dir_ / "m2.json"), text);
+  // A preset naming the model (relative to the preset) generates a tree.
+  fs::path species = write("p.toml", "method = \"plantons\"\nseed = 2\nmodel = \"m.json\"\nmax_organs = 500\n");
+  Result g = run("generate --species '" + species.string() + "' --out '" + (dir_ / "t.glb").string() + "'");
+  ASSERT_EQ(g.code, 0) << g.err;
+  EXPECT_EQ(slurp(dir_ / "t.glb").substr(0, 4), "glTF");
+  // Samples from another method's preset.
+  fs::path lsystem = write("l.toml", "method = \"lsystem\"\nseed = 3\niterations = 3\naxiom = \"X\"\nstep = 0.5\n"
+                                     "leaf_size = 0.1\n[[production]]\npredecessor = \"X\"\nsuccessor = \"F[+X]F[-X]/X\"\n");
+  Result s = run("learn --species '" + lsystem.string() + "' --trees 2 --out '" + (dir_ / "f.json").string() + "'");
+  EXPECT_EQ(s.code, 0) << s.err;
+  // No source, two sources: usage errors.
+  EXPECT_EQ(run("learn --out '" + (dir_ / "x.json").string() + "'").code, 2);
+  EXPECT_EQ(run("learn --ground-truth --samples '" + model.string() + "' --out '" + (dir_ / "x.json").string() + "'").code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "x.json"));
+}
+
+TEST_F(CliTest, BadPlantonModelFailsWithOneLine) {
+  fs::path model = write("m.json", "{\"format\": \"forest-plantons\",\n \"version\": 1,\n \"plantons\": [}\n");
+  fs::path species = write("p.toml", "method = \"plantons\"\nmodel = \"m.json\"\n");
+  Result r = run("generate --species '" + species.string() + "' --out '" + (dir_ / "t.glb").string() + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("m.json:3:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "t.glb"));
+  fs::path missing = write("q.toml", "method = \"plantons\"\nmodel = \"absent.json\"\n");
+  Result m = run("generate --species '" + missing.string() + "' --out '" + (dir_ / "t.glb").string() + "'");
+  EXPECT_EQ(m.code, 2);
+  EXPECT_NE(m.err.find("q.toml:2:"), std::string::npos) << m.err;
+  // A sample file that is not one.
+  Result s = run("learn --samples '" + model.string() + "' --out '" + (dir_ / "o.json").string() + "'");
+  EXPECT_EQ(s.code, 2);
+  EXPECT_EQ(lines(s.err), 1u) << s.err;
+  EXPECT_FALSE(fs::exists(dir_ / "t.glb"));
+  EXPECT_FALSE(fs::exists(dir_ / "o.json"));
+}
+
 TEST_F(CliTest, RenderWritesPngAndNothingElse) {
   fs::path scene = write("ok.toml", scene_with("[[tree]]\nspecies = 0\nx = 0\nz = 0\n"));
   Result r = run("render '" + scene.string() + "' --out '" + (dir_ / "frame.png").string() + "' --validate --stats");
