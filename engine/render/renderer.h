@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/render/depth_pyramid.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
 #include "engine/vk/resources.h"
@@ -24,6 +25,11 @@ struct FrameSettings {
   float fixed_scale = 1.0f;   // PRUNE_FIXED: leaf area scale s
   bool mask = false;          // coverage only: trees white on black, no sky or terrain
   bool lambda_view = false;
+  // Depth-buffer occlusion feedback (seed 000 §7.4): λ scaled by each tree's visibility in
+  // the previous frame, hidden trees culled. The first frame, and any frame after a camera
+  // cut (this flag, or a jump detected from the camera), counts every tree as visible.
+  bool occlusion = false;
+  bool camera_cut = false;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -35,6 +41,11 @@ struct FrameStats {
   uint32_t branch_triangles = 0;
   uint32_t lod_draws[MAX_BRANCH_LODS] = {};  // visible trees per branch LOD level
   double mean_lambda = 0.0;                   // over visible trees
+  uint32_t occluded_instances = 0;  // in the frustum, culled by occlusion
+  uint32_t leaves_saved = 0;        // by occlusion: leaves the mode alone would have drawn, minus drawn
+  uint32_t triangles_saved = 0;     // by occlusion: leaf + branch triangles
+  bool camera_cut = false;          // occlusion treated every tree as visible this frame
+  double pyramid_ms = 0.0;          // GPU time of the depth pyramid (0 without occlusion)
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
@@ -71,11 +82,19 @@ class Renderer {
   void render_reference(const CameraDesc& camera, const FrameSettings& reference);
   PrResult compare_with_reference(const CameraDesc& camera, const FrameSettings& test);
 
+  // Occlusion feedback state of every instance, read back from the GPU (tests, tools).
+  std::vector<gpu::InstanceState> instance_states();
+  const DepthPyramid& depth_pyramid() const { return pyramid_; }
+
  private:
   void create_pipelines();
   enum class Output { none, image, reference, compare };
   FrameStats submit(const CameraDesc& camera, const FrameSettings& settings, Output output);
-  void record(VkCommandBuffer cmd, Output output, bool mask);
+  void record(VkCommandBuffer cmd, Output output, bool mask, bool build_pyramid);
+  // Occlusion feedback (seed 000 §7.4): per-model samples, per-instance state, the pyramid.
+  void create_occlusion_resources(const std::vector<gpu::HullSample>& samples);
+  void record_pyramid(VkCommandBuffer cmd);
+  bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;
 
   vk::Context& ctx_;
   const Scene& scene_;
@@ -89,6 +108,14 @@ class Renderer {
   vk::Image leaf_textures_;
   VkSampler sampler_ = VK_NULL_HANDLE;
   vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
+  vk::Image depth_resolve_;                // sample 0 of depth_ when samples_ > 1: the pyramid's source
+  vk::Buffer hull_samples_, instance_states_;
+  DepthPyramid pyramid_;
+  VkSampler pyramid_sampler_ = VK_NULL_HANDLE;
+  // The frame the pyramid holds: its camera, and whether it is usable at all.
+  bool pyramid_valid_ = false;
+  glm::mat4 pyramid_view_proj_{1.0f};
+  CameraDesc pyramid_camera_;
   VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
 
  public:

@@ -71,6 +71,7 @@ struct SceneDesc {
   float prune_distance = 400.0f;  // meters at which the normalized distance d reaches 1
   float transition = 0.1f;        // Cook's transition band t: fraction of the prefix that shrinks
   bool lambda_view = false;       // [render] view = "lambda": color trees by detail level
+  bool occlusion = false;         // [render] occlusion: depth-buffer occlusion feedback (§7.4)
   CameraDesc camera;
   SkyDesc sky;
   TerrainDesc terrain;
