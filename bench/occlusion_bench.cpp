@@ -111,8 +111,11 @@ int main(int argc, char** argv) {
   std::printf("GPU frame ms           %13.2f  %13.2f\n", off.frame_ms / n, on.frame_ms / n);
   std::printf("GPU cull ms            %13.3f  %13.3f\n", off.cull_ms / n, on.cull_ms / n);
   std::printf("GPU pyramid ms         %13s  %13.3f\n", "-", on.pyramid_ms / n);
-  double extra = on.pyramid_ms + std::max(0.0, on.cull_ms - off.cull_ms);
-  std::printf("pyramid + occlusion test: %.2f %% of the frame with occlusion on\n", 100.0 * extra / on.frame_ms);
+  // The occlusion test runs inside the cull pass: count that whole pass (an upper bound), and
+  // its growth over the pass without occlusion (timestamps on a loaded machine are noisy).
+  std::printf("pyramid + cull pass: %.2f %% of the frame with occlusion on (pyramid + cull growth: %.2f %%)\n",
+              100.0 * (on.pyramid_ms + on.cull_ms) / on.frame_ms,
+              100.0 * (on.pyramid_ms + std::max(0.0, on.cull_ms - off.cull_ms)) / on.frame_ms);
   std::printf("counted by the GPU: %.0f leaves, %.0f triangles saved / frame\n", on.saved_leaves / n,
               on.saved_triangles / n);
   int code = ctx.validation_messages > 0 ? 1 : 0;
