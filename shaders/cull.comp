@@ -2,12 +2,21 @@
 #extension GL_GOOGLE_include_directive : require
 // One thread per tree instance: frustum test of the bounding sphere, branch LOD by projected
 // error, then append the compacted indirect draws (branches, and the model's leaves as
-// instances of its card).
+// instances of its card). With occlusion on, λ is scaled by the tree's visibility in the
+// previous frame (occlusion.glsl) and trees hidden there entirely are not drawn.
 #include "common.glsl"
+#include "occlusion.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_DRAW_COUNTS, std430) buffer Counts { DrawCounts counts; };
+
+// s_opt(λ) from the model's table, linearly interpolated.
+float opt_area_scale(Model m, float lambda) {
+  float spos = clamp(lambda, 0.0, 1.0) * float(S_SAMPLES - 1);
+  uint sat = m.table_offset + uint(spos);
+  return mix(prune_tables[sat], prune_tables[min(sat + 1, m.table_offset + S_SAMPLES - 1)], fract(spos));
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -37,14 +46,43 @@ void main() {
     float pos = d_table_position(d);
     uint at = m.table_offset + S_SAMPLES + uint(pos);
     lambda = mix(prune_tables[at], prune_tables[min(at + 1, m.table_offset + TABLE_FLOATS - 1)], fract(pos));
-    float spos = clamp(lambda, 0.0, 1.0) * float(S_SAMPLES - 1);
-    uint sat = m.table_offset + uint(spos);
-    area_scale = mix(prune_tables[sat], prune_tables[min(sat + 1, m.table_offset + S_SAMPLES - 1)], fract(spos));
+    area_scale = opt_area_scale(m, lambda);
   } else if (frame.prune_mode == PRUNE_FIXED) {
     lambda = frame.prune.z;
     area_scale = frame.prune.w;
   }
   uint k = leaf_prefix(lambda, m.leaf_count);
+
+  // Occlusion feedback (seed 000 §7.4): λ_occl = λ(d) · o, o = max(f, 0.1) with hysteresis.
+  if ((frame.occlusion & OCCLUSION_ON) != 0) {
+    InstanceState st = instance_states[i];
+    bool cut = (frame.occlusion & OCCLUSION_CUT) != 0;
+    float f = cut ? 1.0 : visible_fraction(inst, m);
+    bool hidden = !cut && f == 0.0 && sphere_hidden(center, radius);
+    st.occlusion = cut ? 1.0 : occlusion_factor(st.occlusion, f);
+    st.visible = f;
+    st.occluded = hidden ? 1 : 0;
+    instance_states[i] = st;
+    uint k_mode = k;
+    if (hidden) {
+      atomicAdd(counts.occluded_instances, 1);
+      atomicAdd(counts.leaves_saved, k_mode);
+      atomicAdd(counts.triangles_saved, k_mode * (m.card_index_count / 3) + m.lod_index_count[lod] / 3);
+      return;
+    }
+    if (st.occlusion < 1.0) {
+      lambda *= st.occlusion;
+      // Survivors compensate as the mode prescribes for the lower λ.
+      if (frame.prune_mode == PRUNE_COOK) {
+        area_scale = 1.0 / max(lambda, 1e-3);
+      } else if (frame.prune_mode == PRUNE_OPT && m.has_tables != 0) {
+        area_scale = opt_area_scale(m, lambda);
+      }
+      k = leaf_prefix(lambda, m.leaf_count);
+      atomicAdd(counts.leaves_saved, k_mode - k);
+      atomicAdd(counts.triangles_saved, (k_mode - k) * (m.card_index_count / 3));
+    }
+  }
 
   uint b = atomicAdd(counts.branch_draws, 1);
   atomicAdd(counts.lod_draws[lod], 1);

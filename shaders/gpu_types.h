@@ -30,6 +30,9 @@ using mat4 = glm::mat4;
 #define BINDING_COVERAGE_REFERENCE 8
 #define BINDING_COVERAGE_TEST 9
 #define BINDING_PR_COUNTS 10
+#define BINDING_DEPTH_PYRAMID 11   // previous frame's depth pyramid (farthest depth per texel)
+#define BINDING_HULL_SAMPLES 12    // HullSample per model point (occlusion test, §7.4)
+#define BINDING_INSTANCE_STATE 13  // InstanceState: occlusion feedback kept across frames
 
 // FrameData.prune_mode: how many leaves of each tree are drawn (seed 000 ch7).
 #define PRUNE_FULL 0   // every leaf, λ = 1
@@ -50,7 +53,12 @@ using mat4 = glm::mat4;
 #define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
 #define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
 
+// FrameData.occlusion: depth-buffer occlusion feedback (seed 000 §7.4).
+#define OCCLUSION_ON 1   // test hull samples against the previous frame's pyramid
+#define OCCLUSION_CUT 2  // no usable previous frame (first frame, camera cut): all count as visible
+
 #define CULL_GROUP_SIZE 64
+#define PYRAMID_GROUP_SIZE 8  // 8x8 texels per depth_pyramid.comp workgroup
 #define PR_GROUP_SIZE 256
 
 // Per-frame constants (uniform buffer).
@@ -65,10 +73,15 @@ GPU_STRUCT FrameData {
   vec4 frustum[6];      // planes, xyz = inward normal, w = distance; dot(n,p)+w >= 0 inside
   vec4 lod;             // x = pixels per meter at distance 1, y = allowed error in pixels (0: LOD0 only)
   vec4 prune;           // x = distance where d reaches 1 (m), y = transition band t, z = fixed λ, w = fixed s
+  mat4 prev_view_proj;  // the frame the depth pyramid was built from
+  vec4 prev_camera;     // xyz its camera position, w its near plane (m)
+  vec4 pyramid;         // x, y = level-0 size in texels, z = level count
   uint instance_count;
   uint leaf_command_base;  // index of the first leaf command in the command buffer
   uint prune_mode;         // PRUNE_*
   uint view_flags;         // VIEW_*
+  uint occlusion;          // OCCLUSION_*
+  uint pad0, pad1, pad2;
 };
 
 // One tree instance in the scene: placed once at load, never touched per frame by the CPU.
@@ -98,6 +111,23 @@ GPU_STRUCT Model {
   uint leaf_count;
   uint table_offset;         // first float of this model's PR tables in the prune table buffer
   uint has_tables;           // 0: not baked; mode opt then draws it at full detail
+  uint sample_offset;        // first HullSample of this model
+  uint sample_count;
+  float occlusion_margin;    // model-space meters a sample is moved toward the camera before the test
+};
+
+// One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.
+GPU_STRUCT HullSample {
+  vec4 position;  // model space, w = 1
+  vec4 normal;    // outward unit normal, w = 0
+};
+
+// Per-instance occlusion feedback, read and rewritten by cull.comp every frame.
+GPU_STRUCT InstanceState {
+  float occlusion;  // smoothed factor o in [OCCLUSION_FLOOR, 1]: λ = λ_mode(d) · o
+  float visible;    // last measured fraction f of front-facing samples that were visible
+  uint occluded;    // 1: culled outright last frame (no visible sample, hidden sphere)
+  uint pad;
 };
 
 // One leaf: an instance of the model's leaf card (glTF EXT_mesh_gpu_instancing TRS).
@@ -127,6 +157,9 @@ struct DrawCounts {
   uint branch_triangles;
   uint lod_draws[MAX_BRANCH_LODS];  // branch draws per LOD level
   uint lambda_sum;                  // Σ λ over visible trees, in 1/65536 (mean λ)
+  uint occluded_instances;          // in the frustum but culled by occlusion
+  uint leaves_saved;                // leaves the mode would draw minus leaves drawn (occlusion)
+  uint triangles_saved;             // leaf + branch triangles saved by occlusion
 };
 
 // Pixel counts of one coverage comparison (pr_count.comp).

@@ -49,6 +49,25 @@ PRUNE_INLINE float transition_size(float i, float lambda_n, float t) {
   return clamp(u, 0.0f, 1.0f);
 }
 
+// Occlusion feedback (seed 000 §7.4): λ_occl = λ(d) · max(f, 0.1), f = visible fraction of
+// the hull samples, smoothed over frames by a hysteresis. The thesis gives no formula; ours:
+// the factor rises at once when f grows by more than a band or reaches 1 (a tree coming into
+// view never waits for its leaves), holds inside the band (a sample or two flickering in and
+// out does not move λ), and falls geometrically toward its target, keeping OCCLUSION_KEEP of
+// the gap per frame, so a tree that gets hidden thins out over a few frames instead of
+// popping: from 1 it reaches ≤ 0.15 after 4 frames.
+#define OCCLUSION_FLOOR 0.1f
+#define OCCLUSION_KEEP 0.4f
+#define OCCLUSION_RISE_BAND 0.1f
+
+PRUNE_INLINE float occlusion_factor(float previous, float visible_fraction) {
+  float target = clamp(max(visible_fraction, OCCLUSION_FLOOR), 0.0f, 1.0f);
+  if (target >= 1.0f || target >= previous + OCCLUSION_RISE_BAND) return target;
+  if (target >= previous) return previous;
+  float next = target + (previous - target) * OCCLUSION_KEEP;
+  return next - target < 0.01f ? target : next;
+}
+
 #ifdef __cplusplus
 }  // namespace forest::prune
 #endif

@@ -31,11 +31,18 @@ int run_render(const RenderArgs& args) {
     vk::create_context(ctx, options);
     FrameImage image;
     FrameStats stats;
+    bool settings_occlusion = args.occlusion.value_or(desc.occlusion);
     auto t_render = clock::now();
     {
       Renderer renderer(ctx, scene, desc.width, desc.height, desc.samples);
       t_render = clock::now();
-      stats = renderer.render(desc.camera, &image);
+      FrameSettings settings = scene_frame_settings(desc);
+      if (args.occlusion) settings.occlusion = *args.occlusion;
+      // Occlusion feeds back from one frame to the next: a still picture shows the steady
+      // state, after the hidden trees have thinned out (kWarmupFrames from the same camera).
+      constexpr int kWarmupFrames = 5;
+      for (int i = 0; settings.occlusion && i < kWarmupFrames; ++i) renderer.render(desc.camera, nullptr, settings);
+      stats = renderer.render(desc.camera, &image, settings);
     }
     auto t_done = clock::now();
     if (ctx.validation_messages > 0) {
@@ -55,6 +62,9 @@ int run_render(const RenderArgs& args) {
         std::printf("branches: %u triangles drawn; trees per LOD: %u %u %u %u; mean lambda %.3f\n",
                     stats.branch_triangles, stats.lod_draws[0], stats.lod_draws[1], stats.lod_draws[2],
                     stats.lod_draws[3], stats.mean_lambda);
+      if (args.stats && settings_occlusion)
+        std::printf("occlusion: %u trees culled, %u leaves and %u triangles saved; GPU pyramid %.2f ms\n",
+                    stats.occluded_instances, stats.leaves_saved, stats.triangles_saved, stats.pyramid_ms);
     }
   } catch (...) {
     vk::destroy_context(ctx);

@@ -91,6 +91,7 @@ struct RenderArgs {
   std::string out;
   std::string device;
   std::optional<uint32_t> width, height;
+  std::optional<bool> occlusion;  // --occlusion on|off, overrides [render].occlusion
   bool stats = false;
   bool validate = false;
 };

@@ -86,6 +86,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--device", render.device, "Device index or name substring");
   auto* width_opt = render_cmd->add_option("--width", width, "Override [render].width")->check(CLI::Range(16, 8192));
   auto* height_opt = render_cmd->add_option("--height", height, "Override [render].height")->check(CLI::Range(16, 8192));
+  std::string occlusion;
+  auto* occlusion_opt = render_cmd->add_option("--occlusion", occlusion,
+                                               "Depth-buffer occlusion feedback (overrides [render].occlusion)")
+                            ->check(CLI::IsMember({"on", "off"}));
   render_cmd->add_flag("--stats", render.stats, "Print GPU statistics and timings");
   render_cmd->add_flag("--validate", render.validate,
                        "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
@@ -160,6 +164,7 @@ int main(int argc, char** argv) {
     if (*render_cmd) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;
+      if (*occlusion_opt) render.occlusion = occlusion == "on";
       return app::run_render(render);
     }
     if (*walk_cmd) {

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "engine/render/leaf_textures.h"
+#include "engine/render/occlusion_samples.h"
 #include "generators/bake/pr_tables.h"
 #include "engine/vk/pipelines.h"
 
@@ -14,7 +15,11 @@ namespace {
 
 constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr uint32_t kTimestampCount = 4;
+constexpr uint32_t kTimestampCount = 6;  // frame start, cull end, draw end, frame end, pyramid start/end
+// A camera that moves or turns this much between two frames is a cut: the previous frame's
+// depth says nothing about the new view, so occlusion treats every tree as visible.
+constexpr float kCutDistance = 2.0f;    // meters
+constexpr float kCutAngleDeg = 10.0f;
 
 // Appends a mesh to the global vertex/index arrays; returns (first index, vertex offset).
 std::pair<uint32_t, int32_t> append(std::vector<Vertex>& vertices, std::vector<uint32_t>& indices, const Mesh& mesh) {
@@ -43,6 +48,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   std::vector<gpu::Model> models;
   std::vector<gpu::Leaf> leaves;
   std::vector<float> tables;
+  std::vector<gpu::HullSample> hull_samples;
   for (const TreeModel& tm : scene.models) {
     gpu::Model m{};
     m.bounding_sphere = tm.bounding_sphere;
@@ -76,6 +82,11 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
     for (const LeafPlacement& l : tm.leaves)
       leaves.push_back({glm::vec4(l.position, l.scale), glm::vec4(l.rotation.x, l.rotation.y, l.rotation.z, l.rotation.w),
                         glm::vec4(l.color, 1.0f)});
+    OcclusionSamples occ = occlusion_samples(tm);
+    m.sample_offset = uint32_t(hull_samples.size());
+    m.sample_count = uint32_t(occ.samples.size());
+    m.occlusion_margin = occ.margin;
+    hull_samples.insert(hull_samples.end(), occ.samples.begin(), occ.samples.end());
     models.push_back(m);
   }
   instance_count_ = uint32_t(scene.instances.size());
@@ -126,8 +137,16 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   if (samples_ > VK_SAMPLE_COUNT_1_BIT)
     color_msaa_ = vk::create_image(ctx, {width, height}, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_COLOR_BIT, samples_);
-  depth_ = vk::create_image(ctx, {width, height}, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+  // Single-sampled depth feeds the depth pyramid directly; multisampled depth resolves (sample 0,
+  // the one resolve mode every device has) into depth_resolve_ for it.
+  const VkImageUsageFlags depth_usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  depth_ = vk::create_image(ctx, {width, height}, kDepthFormat,
+                            depth_usage | (samples_ == VK_SAMPLE_COUNT_1_BIT ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT) : 0u),
                             VK_IMAGE_ASPECT_DEPTH_BIT, samples_);
+  if (samples_ > VK_SAMPLE_COUNT_1_BIT)
+    depth_resolve_ = vk::create_image(ctx, {width, height}, kDepthFormat, depth_usage | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                      VK_IMAGE_ASPECT_DEPTH_BIT);
+  create_occlusion_resources(hull_samples);
 
   // ---- one descriptor set shared by every pipeline ----
   const VkShaderStageFlags all = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -143,13 +162,16 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
       {BINDING_COVERAGE_REFERENCE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {BINDING_COVERAGE_TEST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {BINDING_PR_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_DEPTH_PYRAMID, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_HULL_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_INSTANCE_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   slci.bindingCount = uint32_t(std::size(bindings));
   slci.pBindings = bindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &set_layout_));
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 9},
-                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 11},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
   dpci.poolSizeCount = 3;
@@ -160,9 +182,11 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   dsai.descriptorSetCount = 1;
   dsai.pSetLayouts = &set_layout_;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, &set_));
-  // Buffer bindings in the order of `bindings`, the image sampler (index 6) written below.
-  const vk::Buffer* buffers[] = {&frame_,       &instances_, &models_, &leaves_, &commands_, &counts_, nullptr,
-                                 &prune_tables_, &coverage_reference_, &coverage_test_, &pr_counts_};
+  // Buffer bindings in the order of `bindings`, the image samplers (indices 6, 11) written below.
+  const vk::Buffer* buffers[] = {&frame_,         &instances_,          &models_,        &leaves_,
+                                 &commands_,      &counts_,             nullptr,         &prune_tables_,
+                                 &coverage_reference_, &coverage_test_, &pr_counts_,     nullptr,
+                                 &hull_samples_,  &instance_states_};
   const uint32_t binding_count = uint32_t(std::size(bindings));
   VkDescriptorBufferInfo infos[std::size(buffers)];
   VkWriteDescriptorSet writes[std::size(buffers)];
@@ -183,6 +207,10 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   writes[6].descriptorCount = 1;
   writes[6].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[6].pImageInfo = &image_info;
+  VkDescriptorImageInfo pyramid_info{pyramid_sampler_, pyramid_.image.view, VK_IMAGE_LAYOUT_GENERAL};
+  writes[11] = writes[6];
+  writes[11].dstBinding = BINDING_DEPTH_PYRAMID;
+  writes[11].pImageInfo = &pyramid_info;
   vkUpdateDescriptorSets(ctx.device, binding_count, writes, 0, nullptr);
 
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -267,9 +295,65 @@ Renderer::~Renderer() {
   vk::destroy_image(ctx_, leaf_textures_);
   vkDestroySampler(dev, sampler_, nullptr);
   vk::destroy_image(ctx_, depth_);
+  vk::destroy_image(ctx_, depth_resolve_);
+  vk::destroy_buffer(ctx_, hull_samples_);
+  vk::destroy_buffer(ctx_, instance_states_);
+  destroy_depth_pyramid(ctx_, pyramid_);
+  vkDestroySampler(dev, pyramid_sampler_, nullptr);
 }
 
-void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
+void Renderer::create_occlusion_resources(const std::vector<gpu::HullSample>& samples) {
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  hull_samples_ = vk::create_buffer_from<gpu::HullSample>(ctx_, storage, samples);
+  // Every instance starts fully visible, so the first frames draw exactly what the mode says.
+  std::vector<gpu::InstanceState> states(std::max(instance_count_, 1u), gpu::InstanceState{1.0f, 1.0f, 0u, 0u});
+  instance_states_ = vk::create_buffer_from<gpu::InstanceState>(ctx_, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, states);
+  VkImageView source = depth_resolve_.image ? depth_resolve_.view : depth_.view;
+  pyramid_ = create_depth_pyramid(ctx_, source, {width_, height_}, true);
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = VK_LOD_CLAMP_NONE;
+  VK_CHECK(vkCreateSampler(ctx_.device, &sci, nullptr, &pyramid_sampler_));
+}
+
+void Renderer::record_pyramid(VkCommandBuffer cmd) {
+  // The finished depth (or its resolve) becomes the pyramid's source.
+  const vk::Image& source = depth_resolve_.image ? depth_resolve_ : depth_;
+  vk::image_barrier(cmd, source.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  record_depth_pyramid(cmd, pyramid_);
+}
+
+bool Renderer::camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const {
+  if (settings.camera_cut || !pyramid_valid_) return true;
+  if (camera.fov_deg != pyramid_camera_.fov_deg || camera.near != pyramid_camera_.near) return true;
+  if (glm::distance(cm.position, pyramid_camera_.position) > kCutDistance) return true;
+  glm::vec3 before = glm::normalize(pyramid_camera_.target - pyramid_camera_.position);
+  return glm::dot(before, cm.forward) < std::cos(glm::radians(kCutAngleDeg));
+}
+
+std::vector<gpu::InstanceState> Renderer::instance_states() {
+  std::vector<gpu::InstanceState> out(instance_count_);
+  if (out.empty()) return out;
+  VkDeviceSize bytes = sizeof(gpu::InstanceState) * out.size();
+  vk::Buffer readback = vk::create_buffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
+  vk::submit_now(ctx_, [&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, instance_states_.buffer, readback.buffer, 1, &copy);
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  });
+  std::memcpy(out.data(), readback.mapped, bytes);
+  vk::destroy_buffer(ctx_, readback);
+  return out;
+}
+
+void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_pyramid) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
@@ -302,12 +386,18 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  vk::image_barrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  // Also after the previous frame's pyramid reads of the depth (compute).
+  for (VkImage image : {depth_.image, depth_resolve_.image})
+    if (image)
+      vk::image_barrier(cmd, image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 
   VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   color.imageView = color_.view;
@@ -326,8 +416,14 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   depth.imageView = depth_.view;
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // nothing reads depth after the frame (yet)
+  // Kept when the depth pyramid reads it (single-sampled) or resolved into depth_resolve_.
+  depth.storeOp = build_pyramid && !depth_resolve_.image ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.clearValue.depthStencil = {0.0f, 0};  // reversed Z: 0 is infinitely far
+  if (depth_resolve_.image) {
+    depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+    depth.resolveImageView = depth_resolve_.view;
+    depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  }
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, {width_, height_}};
   ri.layerCount = 1;
@@ -363,6 +459,9 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   vkCmdEndRendering(cmd);
   color_layout_ = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, timestamps_, 2);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 4);
+  if (build_pyramid) record_pyramid(cmd);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, timestamps_, 5);
 
   // ---- readback: statistics always, pixels when asked ----
   VkBufferCopy counts_copy{0, 0, sizeof(gpu::DrawCounts)};
@@ -403,6 +502,7 @@ FrameSettings scene_frame_settings(const SceneDesc& desc) {
   s.prune_mode = desc.prune_mode;
   s.lambda_view = desc.lambda_view;
   s.mask = desc.mask_view;
+  s.occlusion = desc.occlusion;
   return s;
 }
 
@@ -483,10 +583,23 @@ void Renderer::submit_and_wait() {
 
 FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& settings, Output output) {
   gpu::FrameData fd = frame_data(camera, settings);
+  CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
+  const bool cut = settings.occlusion && camera_cut(cm, camera, settings);
+  if (settings.occlusion) {
+    fd.occlusion = OCCLUSION_ON | (cut ? OCCLUSION_CUT : 0u);
+    fd.prev_view_proj = pyramid_view_proj_;
+    fd.prev_camera = glm::vec4(pyramid_camera_.position, pyramid_camera_.near);
+    fd.pyramid = glm::vec4(float(pyramid_.size.width), float(pyramid_.size.height), float(pyramid_.levels), 0.0f);
+  }
   std::memcpy(frame_.mapped, &fd, sizeof(fd));
+
   VK_CHECK(vkResetCommandBuffer(cmd_, 0));
   wireframe_ = settings.wireframe && has_wireframe() && !settings.mask;
-  record(cmd_, output, settings.mask);
+  record(cmd_, output, settings.mask, settings.occlusion);
+  // The pyramid now holds this frame (or nothing usable, without occlusion).
+  pyramid_valid_ = settings.occlusion;
+  pyramid_view_proj_ = cm.view_proj;
+  pyramid_camera_ = camera;
   submit_and_wait();
 
   FrameStats stats;
@@ -499,6 +612,10 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   stats.branch_triangles = counts.branch_triangles;
   for (int k = 0; k < MAX_BRANCH_LODS; ++k) stats.lod_draws[k] = counts.lod_draws[k];
   stats.mean_lambda = counts.branch_draws ? double(counts.lambda_sum) / 4096.0 / counts.branch_draws : 0.0;
+  stats.occluded_instances = counts.occluded_instances;
+  stats.leaves_saved = counts.leaves_saved;
+  stats.triangles_saved = counts.triangles_saved;
+  stats.camera_cut = cut;
   uint64_t ts[kTimestampCount] = {};
   VK_CHECK(vkGetQueryPoolResults(ctx_.device, timestamps_, 0, kTimestampCount, sizeof(ts), ts, sizeof(uint64_t),
                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
@@ -506,6 +623,7 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   stats.cull_ms = double(ts[1] - ts[0]) * period_ms;
   stats.draw_ms = double(ts[2] - ts[1]) * period_ms;
   stats.frame_ms = double(ts[3] - ts[0]) * period_ms;
+  stats.pyramid_ms = double(ts[5] - ts[4]) * period_ms;
   return stats;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/render/depth_pyramid.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
 #include "engine/vk/resources.h"
@@ -27,9 +28,11 @@ struct FrameSettings {
   // Triangle edges instead of filled triangles (terrain, bark, leaf cards); ignored when the
   // device lacks fillModeNonSolid (Renderer::has_wireframe()).
   bool wireframe = false;
-  // Occlusion feedback (DESIGN.md "GPU pruning"). The renderer ignores it until occlusion
-  // feedback is merged; `forest walk` already binds a key to it.
-  bool occlusion = true;
+  // Depth-buffer occlusion feedback (seed 000 §7.4): λ scaled by each tree's visibility in
+  // the previous frame, hidden trees culled. The first frame, and any frame after a camera
+  // cut (this flag, or a jump detected from the camera), counts every tree as visible.
+  bool occlusion = false;
+  bool camera_cut = false;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -41,6 +44,11 @@ struct FrameStats {
   uint32_t branch_triangles = 0;
   uint32_t lod_draws[MAX_BRANCH_LODS] = {};  // visible trees per branch LOD level
   double mean_lambda = 0.0;                   // over visible trees
+  uint32_t occluded_instances = 0;  // in the frustum, culled by occlusion
+  uint32_t leaves_saved = 0;        // by occlusion: leaves the mode alone would have drawn, minus drawn
+  uint32_t triangles_saved = 0;     // by occlusion: leaf + branch triangles
+  bool camera_cut = false;          // occlusion treated every tree as visible this frame
+  double pyramid_ms = 0.0;          // GPU time of the depth pyramid (0 without occlusion)
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
@@ -92,11 +100,19 @@ class Renderer {
   void set_coverage_views(const std::vector<CameraDesc>& views);
   std::vector<PrResult> compare_coverage(const std::vector<CoverageJob>& jobs);
 
+  // Occlusion feedback state of every instance, read back from the GPU (tests, tools).
+  std::vector<gpu::InstanceState> instance_states();
+  const DepthPyramid& depth_pyramid() const { return pyramid_; }
+
  private:
   void create_pipelines();
   enum class Output { none, image, reference, compare };
   FrameStats submit(const CameraDesc& camera, const FrameSettings& settings, Output output);
-  void record(VkCommandBuffer cmd, Output output, bool mask);
+  void record(VkCommandBuffer cmd, Output output, bool mask, bool build_pyramid);
+  // Occlusion feedback (seed 000 §7.4): per-model samples, per-instance state, the pyramid.
+  void create_occlusion_resources(const std::vector<gpu::HullSample>& samples);
+  void record_pyramid(VkCommandBuffer cmd);
+  bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;
   gpu::FrameData frame_data(const CameraDesc& camera, const FrameSettings& settings) const;
   void submit_and_wait();
   // Coverage batches: one mask render (branches and/or leaves) recorded into `cmd`.
@@ -118,6 +134,14 @@ class Renderer {
   vk::Image leaf_textures_;
   VkSampler sampler_ = VK_NULL_HANDLE;
   vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
+  vk::Image depth_resolve_;                // sample 0 of depth_ when samples_ > 1: the pyramid's source
+  vk::Buffer hull_samples_, instance_states_;
+  DepthPyramid pyramid_;
+  VkSampler pyramid_sampler_ = VK_NULL_HANDLE;
+  // The frame the pyramid holds: its camera, and whether it is usable at all.
+  bool pyramid_valid_ = false;
+  glm::mat4 pyramid_view_proj_{1.0f};
+  CameraDesc pyramid_camera_;
   VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
 
  public:

@@ -29,7 +29,8 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 }
 
 void read_render(const TomlTable& t, SceneDesc& s) {
-  t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view"});
+  t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view",
+                "occlusion"});
   s.width = uint32_t(t.integer("width", s.width, 16, 8192));
   s.height = uint32_t(t.integer("height", s.height, 16, 8192));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
@@ -42,6 +43,7 @@ void read_render(const TomlTable& t, SceneDesc& s) {
   std::string view = t.choice("view", "shaded", {"shaded", "lambda", "mask"});
   s.lambda_view = view == "lambda";
   s.mask_view = view == "mask";
+  s.occlusion = t.boolean("occlusion", s.occlusion);
 }
 
 void read_camera(const TomlTable& t, CameraDesc& c) {

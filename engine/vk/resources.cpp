@@ -97,6 +97,11 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
   return create_image_2d(ctx, extent, format, usage, aspect, samples, 1, 1, VK_IMAGE_VIEW_TYPE_2D);
 }
 
+Image create_mipmapped_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                             VkImageAspectFlags aspect, uint32_t mips) {
+  return create_image_2d(ctx, extent, format, usage, aspect, VK_SAMPLE_COUNT_1_BIT, mips, 1, VK_IMAGE_VIEW_TYPE_2D);
+}
+
 Image create_texture_array(Context& ctx, uint32_t size, uint32_t layers, uint32_t mips, VkFormat format,
                            std::span<const uint8_t> texels) {
   Image img = create_image_2d(ctx, {size, size}, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,

@@ -38,6 +38,9 @@ Buffer create_buffer_from(Context& ctx, VkBufferUsageFlags usage, std::span<cons
 
 Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                    VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+// Single-sample, `mips` levels; the view covers every level.
+Image create_mipmapped_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                             VkImageAspectFlags aspect, uint32_t mips);
 void destroy_image(Context& ctx, Image& image);
 
 // A sampled 2D array texture (square, all mips), filled from `texels`: layer-major, each

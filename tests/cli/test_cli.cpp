@@ -161,6 +161,7 @@ TEST_F(CliTest, UsageErrorsExitTwo) {
   EXPECT_EQ(run("frobnicate").code, 2);
   EXPECT_EQ(run("render").code, 2);
   EXPECT_EQ(run("generate --method lsystem").code, 2);  // --out missing
+  EXPECT_EQ(run("render s.toml --out f.png --occlusion maybe").code, 2);
   Result r = run("generate --method nosuch --out '" + (dir_ / "t.glb").string() + "'");
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(lines(r.err), 1u);
@@ -257,6 +258,12 @@ TEST_F(CliTest, RenderWritesPngAndNothingElse) {
   EXPECT_EQ(png.substr(1, 3), "PNG");
   EXPECT_EQ(listing(), (std::vector<std::string>{"frame.png", "ok.toml"}));
   EXPECT_NE(r.out.find("1 trees, 1 visible"), std::string::npos) << r.out;
+  // With occlusion feedback: the same picture (one tree in plain view), and its statistics.
+  Result o = run("render '" + scene.string() + "' --out '" + (dir_ / "occl.png").string() +
+                 "' --validate --stats --occlusion on");
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(slurp(dir_ / "occl.png"), png);
+  EXPECT_NE(o.out.find("occlusion: 0 trees culled"), std::string::npos) << o.out;
 }
 
 TEST_F(CliTest, BakeReportAndRenderOpt) {

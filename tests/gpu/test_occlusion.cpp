@@ -1,0 +1,270 @@
+// Depth-buffer occlusion feedback (seed 000 §7.4) on the Vulkan device (lavapipe in CI),
+// validation layer on: the depth pyramid's contents, Fig 7.13 (a tree hidden behind a row
+// is pruned, its visible neighbours are not), hidden pruning that does not show, camera cuts.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "engine/render/depth_pyramid.h"
+#include "engine/render/renderer.h"
+#include "generators/bake/hull.h"
+#include "generators/methods/methods.h"
+
+using namespace forest;
+
+namespace {
+
+const std::string kSource = FOREST_SOURCE_DIR;
+
+class OcclusionTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    vk::ContextOptions options;
+    options.validation = true;
+    vk::create_context(ctx_, options);
+  }
+  void TearDown() override {
+    vk::destroy_context(ctx_);
+    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
+  }
+  vk::Context ctx_;
+};
+
+// The broadleaf preset with its metaball hull attached (the hull samples a bake writes).
+const TreeModel& broadleaf_with_hull() {
+  static const TreeModel model = [] {
+    TreeModel m = generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11});
+    attach_hull(m, build_hull(m.leaves, plant_height(m)));
+    return m;
+  }();
+  return model;
+}
+
+// The same tree with leaves twice as long: a dense crown that hides what is behind it.
+TreeModel dense(TreeModel m) {
+  for (LeafPlacement& l : m.leaves) l.scale *= 2.0f;
+  return m;
+}
+
+// Flat ground, no fog, hand-placed trees of `models`.
+Scene make_scene(std::vector<TreeModel> models, std::vector<TreeDesc> trees) {
+  Scene s;
+  s.desc.width = 160;
+  s.desc.height = 120;
+  s.desc.samples = 1;
+  s.desc.sky.fog_density = 0.0f;
+  s.desc.terrain.size = 200.0f;
+  s.desc.terrain.resolution = 8;
+  s.desc.terrain.height = 0.0f;
+  s.desc.trees = std::move(trees);
+  s.desc.camera.position = {0.0f, 6.7f, -20.0f};
+  s.desc.camera.target = {0.0f, 6.7f, 0.0f};
+  s.desc.camera.fov_deg = 45.0f;
+  s.terrain = make_terrain(s.desc.terrain);
+  s.models = std::move(models);
+  s.instances = place_trees(s.desc, s.terrain);
+  return s;
+}
+
+// Fig 7.13: a row of three dense trees (model 0) across the view, crowns side by side, one
+// more behind the middle one, and a tree (model 1) straight behind those two, far enough to
+// hide in their crowns: the last instance. The camera looks at the crowns' height.
+std::vector<TreeDesc> row_and_hidden_tree() {
+  return {{0, -6.5f, 0.0f, 1.0f, 0.0f}, {0, 0.0f, 0.0f, 1.0f, 50.0f}, {0, 6.5f, 0.0f, 1.0f, 100.0f},
+          {0, 0.5f, 4.0f, 1.0f, 170.0f}, {1, 0.0f, 30.0f, 1.0f, 0.0f}};
+}
+
+size_t differing_pixels(const FrameImage& a, const FrameImage& b) {
+  size_t n = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4) n += std::memcmp(&a.rgba[i], &b.rgba[i], 3) != 0;
+  return n;
+}
+
+}  // namespace
+
+// Every pyramid texel is the farthest (minimum, reversed Z) depth of the pixels under it,
+// with the MIN-reduction sampler and with the 4-tap fallback.
+TEST_F(OcclusionTest, PyramidHoldsTheFarthestDepthOfItsFootprint) {
+  const uint32_t w = 100, h = 60;
+  std::vector<float> depth(size_t(w) * h);
+  uint32_t x = 12345;
+  for (float& d : depth) {  // xorshift: values spread over (0, 1)
+    x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+    d = float(x % 100000) / 100000.0f + 1e-5f;
+  }
+  vk::Image image = vk::create_image(ctx_, {w, h}, VK_FORMAT_D32_SFLOAT,
+                                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                     VK_IMAGE_ASPECT_DEPTH_BIT);
+  vk::Buffer staging = vk::create_buffer(ctx_, depth.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::upload);
+  std::memcpy(staging.mapped, depth.data(), depth.size() * 4);
+
+  // CPU reference: level 0 = min over the pixels each texel overlaps, then 2x2 minima.
+  std::vector<std::vector<float>> expected(1, std::vector<float>(64 * 32));
+  for (uint32_t ty = 0; ty < 32; ++ty)
+    for (uint32_t tx = 0; tx < 64; ++tx) {
+      float m = 1.0f;
+      for (uint32_t py = ty * h / 32; py < std::min((ty + 1) * h / 32 + ((ty + 1) * h % 32 != 0), h); ++py)
+        for (uint32_t px = tx * w / 64; px < std::min((tx + 1) * w / 64 + ((tx + 1) * w % 64 != 0), w); ++px)
+          m = std::min(m, depth[py * w + px]);
+      expected[0][ty * 64 + tx] = m;
+    }
+  for (uint32_t lw = 64, lh = 32; lw > 1 || lh > 1;) {
+    uint32_t nw = std::max(lw / 2, 1u), nh = std::max(lh / 2, 1u);
+    const std::vector<float>& up = expected.back();
+    std::vector<float> next(size_t(nw) * nh);
+    for (uint32_t ty = 0; ty < nh; ++ty)
+      for (uint32_t tx = 0; tx < nw; ++tx) {
+        float m = 1.0f;
+        for (uint32_t dy = 0; dy < 2; ++dy)
+          for (uint32_t dx = 0; dx < 2; ++dx)
+            m = std::min(m, up[std::min(ty * 2 + dy, lh - 1) * lw + std::min(tx * 2 + dx, lw - 1)]);
+        next[ty * nw + tx] = m;
+      }
+    expected.push_back(std::move(next));
+    lw = nw, lh = nh;
+  }
+
+  for (bool minmax : {true, false}) {
+    SCOPED_TRACE(minmax ? "MIN-reduction sampler" : "4-tap fallback");
+    DepthPyramid p = create_depth_pyramid(ctx_, image.view, {w, h}, minmax);
+    EXPECT_EQ(p.minmax_sampler, minmax && supports_minmax_reduction(ctx_));
+    ASSERT_EQ(p.size.width, 64u);
+    ASSERT_EQ(p.size.height, 32u);
+    ASSERT_EQ(p.levels, 7u);
+    vk::submit_now(ctx_, [&](VkCommandBuffer cmd) {
+      vk::image_barrier(cmd, image.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0,
+                        VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      VkBufferImageCopy region{};
+      region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+      region.imageExtent = {w, h, 1};
+      vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+      vk::image_barrier(cmd, image.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+      record_depth_pyramid(cmd, p);
+    });
+    std::vector<std::vector<float>> levels = read_depth_pyramid(ctx_, p);
+    ASSERT_EQ(levels.size(), expected.size());
+    for (size_t l = 0; l < levels.size(); ++l) EXPECT_EQ(levels[l], expected[l]) << "level " << l;
+    destroy_depth_pyramid(ctx_, p);
+  }
+  vk::destroy_buffer(ctx_, staging);
+  vk::destroy_image(ctx_, image);
+}
+
+// Fig 7.13: the tree behind the row thins to λ <= 0.15 λ(d) within a few frames; the row,
+// in plain view, keeps full detail. Leaves are what hides it: behind a leafless row the
+// same tree keeps its detail.
+TEST_F(OcclusionTest, TreeHiddenBehindARowIsPruned) {
+  const TreeModel& m = broadleaf_with_hull();
+  Scene s = make_scene({dense(m), m}, row_and_hidden_tree());
+  const uint32_t hidden = uint32_t(s.instances.size()) - 1;
+  Renderer r(ctx_, s, 160, 120, 1);
+  FrameSettings occl;
+  occl.occlusion = true;
+  FrameStats first = r.render(s.desc.camera, nullptr, occl);
+  EXPECT_TRUE(first.camera_cut) << "the first frame has no previous depth";
+  EXPECT_EQ(first.leaves_saved, 0u);
+  int frames_to_prune = 0;
+  FrameStats last;
+  for (int f = 1; f <= 6 && frames_to_prune == 0; ++f) {
+    last = r.render(s.desc.camera, nullptr, occl);
+    EXPECT_FALSE(last.camera_cut);
+    if (r.instance_states()[hidden].occlusion <= 0.15f) frames_to_prune = f;
+  }
+  EXPECT_GT(frames_to_prune, 0) << "hidden tree still at " << r.instance_states()[hidden].occlusion;
+  EXPECT_LE(frames_to_prune, 5);
+  std::vector<gpu::InstanceState> st = r.instance_states();
+  EXPECT_LE(st[hidden].visible, 0.1f);
+  for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.95f) << "front-row tree " << i;
+  EXPECT_GT(last.leaves_saved, uint32_t(m.leaves.size()) * 8 / 10);
+  EXPECT_LT(last.leaves_drawn, first.leaves_drawn);
+  EXPECT_EQ(last.leaves_drawn + last.leaves_saved, first.leaves_drawn);
+
+  TreeModel leafless = dense(m);
+  leafless.leaves.clear();
+  Scene bare = make_scene({leafless, m}, row_and_hidden_tree());
+  Renderer rb(ctx_, bare, 160, 120, 1);
+  for (int f = 0; f < 4; ++f) rb.render(bare.desc.camera, nullptr, occl);
+  EXPECT_GE(rb.instance_states()[hidden].occlusion, 0.5f) << "trunks alone hide the tree";
+}
+
+// The picture with occlusion feedback is the picture without it, as far as Precision/Recall
+// of the tree coverage can tell (Q >= 0.99), though it draws fewer leaves.
+TEST_F(OcclusionTest, HiddenPruningIsNotVisible) {
+  const TreeModel& m = broadleaf_with_hull();
+  Scene s = make_scene({dense(m), m}, row_and_hidden_tree());
+  // Two more trees deep behind the row, and one off to the side in plain view.
+  s.desc.trees.push_back({1, -1.0f, 45.0f, 1.0f, 60.0f});
+  s.desc.trees.push_back({1, 1.5f, 60.0f, 1.0f, 120.0f});
+  s.desc.trees.push_back({1, -14.0f, 20.0f, 1.0f, 30.0f});
+  s.instances = place_trees(s.desc, s.terrain);
+  Renderer r(ctx_, s, 160, 120, 1);
+  FrameSettings plain, occl;
+  occl.occlusion = true;
+  r.render_reference(s.desc.camera, plain);
+  FrameStats without = r.render(s.desc.camera, nullptr, plain), with;
+  for (int f = 0; f < 5; ++f) with = r.render(s.desc.camera, nullptr, occl);
+  EXPECT_LT(with.leaves_drawn, without.leaves_drawn * 9 / 10) << "occlusion saved too little to matter";
+  PrResult pr = r.compare_with_reference(s.desc.camera, occl);
+  EXPECT_GE(pr.quality(), 0.99) << "P " << pr.precision() << " R " << pr.recall();
+}
+
+// After a camera cut every tree counts as visible: the first frame of the new view is
+// exactly the frame drawn without occlusion, whether the cut is flagged or detected.
+TEST_F(OcclusionTest, CameraCutNeverShowsAHole) {
+  const TreeModel& m = broadleaf_with_hull();
+  Scene s = make_scene({dense(m), m}, row_and_hidden_tree());
+  Renderer r(ctx_, s, 160, 120, 1);
+  FrameSettings plain, occl;
+  occl.occlusion = true;
+  auto converge = [&] {
+    for (int f = 0; f < 5; ++f) r.render(s.desc.camera, nullptr, occl);
+    ASSERT_LE(r.instance_states().back().occlusion, 0.15f);
+  };
+  // Detected: the camera jumps behind the forest, where the pruned tree is in front.
+  CameraDesc behind = s.desc.camera;
+  behind.position = {0.0f, 4.0f, 36.0f};
+  behind.target = {0.0f, 4.0f, 0.0f};
+  converge();
+  FrameImage cut_image, reference;
+  FrameStats cut = r.render(behind, &cut_image, occl);
+  EXPECT_TRUE(cut.camera_cut);
+  EXPECT_EQ(cut.leaves_saved, 0u);
+  r.render(behind, &reference, plain);
+  EXPECT_EQ(differing_pixels(cut_image, reference), 0u);
+
+  // Flagged: a step too small to be detected, declared a cut by the caller.
+  CameraDesc step = s.desc.camera;
+  step.position.x += 0.5f;
+  step.target.x += 0.5f;
+  converge();
+  FrameSettings flagged = occl;
+  flagged.camera_cut = true;
+  FrameImage flagged_image;
+  EXPECT_TRUE(r.render(step, &flagged_image, flagged).camera_cut);
+  r.render(step, &reference, plain);
+  EXPECT_EQ(differing_pixels(flagged_image, reference), 0u);
+  // The same small step unflagged is coherent motion: the hidden tree stays pruned.
+  converge();
+  FrameStats moved = r.render(step, nullptr, occl);
+  EXPECT_FALSE(moved.camera_cut);
+  EXPECT_GT(moved.leaves_saved, 0u);
+}
+
+// With MSAA the pyramid reads the resolved depth (sample 0): the hidden tree is found too.
+TEST_F(OcclusionTest, MultisampledDepthFeedsThePyramid) {
+  const TreeModel& m = broadleaf_with_hull();
+  Scene s = make_scene({dense(m), m}, row_and_hidden_tree());
+  Renderer r(ctx_, s, 120, 90, 4);
+  ASSERT_GT(r.samples(), 1u);
+  FrameSettings occl;
+  occl.occlusion = true;
+  for (int f = 0; f < 5; ++f) r.render(s.desc.camera, nullptr, occl);
+  std::vector<gpu::InstanceState> st = r.instance_states();
+  EXPECT_LE(st.back().occlusion, 0.15f);
+  for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.95f) << "front-row tree " << i;
+}
