@@ -1,6 +1,7 @@
 #include "engine/render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -199,6 +200,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   cbai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   cbai.commandBufferCount = 1;
   VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cbai, &cmd_));
+  pipeline_stats_ = create_gpu_stats(ctx);
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &fence_));
 }
@@ -240,6 +242,7 @@ Renderer::~Renderer() {
   vkDestroyFence(dev, fence_, nullptr);
   vkFreeCommandBuffers(dev, ctx_.command_pool, 1, &cmd_);
   vkDestroyQueryPool(dev, timestamps_, nullptr);
+  destroy_gpu_stats(ctx_, pipeline_stats_);
   for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_}) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, pool_, nullptr);
@@ -260,6 +263,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
   vkCmdResetQueryPool(cmd, timestamps_, 0, kTimestampCount);
+  reset_gpu_stats(cmd, pipeline_stats_);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, 0);
 
   // ---- cull: compacted indirect draws ----
@@ -267,10 +271,12 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  begin_gpu_stats(cmd, pipeline_stats_, StatsPass::cull);
   if (instance_count_ > 0) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
     vkCmdDispatch(cmd, (instance_count_ + CULL_GROUP_SIZE - 1) / CULL_GROUP_SIZE, 1, 1);
   }
+  end_gpu_stats(cmd, pipeline_stats_, StatsPass::cull);
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                          VK_PIPELINE_STAGE_2_TRANSFER_BIT,
@@ -320,6 +326,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
   ri.colorAttachmentCount = 1;
   ri.pColorAttachments = &color;
   ri.pDepthAttachment = &depth;
+  begin_gpu_stats(cmd, pipeline_stats_, StatsPass::draw);
   vkCmdBeginRendering(cmd, &ri);
   VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
   VkRect2D scissor{{0, 0}, {width_, height_}};
@@ -347,6 +354,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask) {
                                   offsetof(gpu::DrawCounts, leaf_draws), instance_count_, stride);
   }
   vkCmdEndRendering(cmd);
+  end_gpu_stats(cmd, pipeline_stats_, StatsPass::draw);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, timestamps_, 2);
 
   // ---- readback: statistics always, pixels when asked ----
@@ -429,6 +437,7 @@ PrResult Renderer::compare_with_reference(const CameraDesc& camera, const FrameS
 }
 
 FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& settings, Output output) {
+  auto cpu_start = std::chrono::steady_clock::now();
   CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
   const SkyDesc& sky = scene_.desc.sky;
   gpu::FrameData fd{};
@@ -458,6 +467,7 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   si.pCommandBufferInfos = &cbi;
   VK_CHECK(vkResetFences(ctx_.device, 1, &fence_));
   VK_CHECK(vkQueueSubmit2(ctx_.queue, 1, &si, fence_));
+  double cpu_submit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   VK_CHECK(vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX));
 
   FrameStats stats;
@@ -477,6 +487,9 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   stats.cull_ms = double(ts[1] - ts[0]) * period_ms;
   stats.draw_ms = double(ts[2] - ts[1]) * period_ms;
   stats.frame_ms = double(ts[3] - ts[0]) * period_ms;
+  stats.cpu_submit_ms = cpu_submit_ms;
+  stats.cull_pipeline = read_gpu_stats(ctx_, pipeline_stats_, StatsPass::cull);
+  stats.draw_pipeline = read_gpu_stats(ctx_, pipeline_stats_, StatsPass::draw);
   return stats;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/render/gpu_stats.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
 #include "engine/vk/resources.h"
@@ -38,6 +39,8 @@ struct FrameStats {
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
+  double cpu_submit_ms = 0.0;  // CPU: frame constants + record + submit, not the GPU wait
+  PipelineStats cull_pipeline, draw_pipeline;  // pipeline-statistics queries per pass
 };
 
 // Precision/Recall of a test frame's coverage against a reference (seed 000 §7.2.2).
@@ -102,6 +105,7 @@ class Renderer {
   VkPipeline cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
   VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE, pr_count_ = VK_NULL_HANDLE;
   VkQueryPool timestamps_ = VK_NULL_HANDLE;
+  GpuStatsQueries pipeline_stats_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
 };

@@ -233,6 +233,11 @@ void create_context(Context& ctx, const ContextOptions& options) {
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
   features.features.multiDrawIndirect = VK_TRUE;
   features.features.drawIndirectFirstInstance = VK_TRUE;
+  // Optional: pipeline-statistics queries (`forest render --stats` prints "n/a" without).
+  VkPhysicalDeviceFeatures available{};
+  vkGetPhysicalDeviceFeatures(ctx.physical, &available);
+  ctx.pipeline_statistics = available.pipelineStatisticsQuery == VK_TRUE;
+  features.features.pipelineStatisticsQuery = available.pipelineStatisticsQuery;
 
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
   dci.queueCreateInfoCount = 1;

@@ -45,6 +45,7 @@ struct Context {
   VkPhysicalDeviceMemoryProperties memory{};
   uint32_t device_index = 0;
   bool validation = false;
+  bool pipeline_statistics = false;  // optional feature pipelineStatisticsQuery, enabled when present
   // Validation messages of severity warning or error seen so far (tests assert 0).
   std::atomic<uint32_t> validation_messages{0};
   std::string last_validation_message;

@@ -71,7 +71,8 @@ std::string scene_with(const std::string& body) {
   return "[render]\nwidth = 64\nheight = 48\n"
          "[camera]\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
          "[terrain]\nsize = 100\nresolution = 8\n"
-         "[[species]]\npreset = \"" + kSource + "/scenes/species/broadleaf.toml\"\n" + body;
+         "[[species]]\npreset = \"" + kSource + "/scenes/species/broadleaf.toml\"\n" + body +
+         "\n[bake]\nviews = 1\nresolution = 32\n";  // presets are baked on first use: keep it cheap
 }
 
 struct BadScene {
