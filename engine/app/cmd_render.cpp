@@ -90,9 +90,11 @@ int run_render(const RenderArgs& args) {
         std::printf("branches: %u triangles drawn; trees per LOD: %u %u %u %u; mean lambda %.3f\n",
                     stats.branch_triangles, stats.lod_draws[0], stats.lod_draws[1], stats.lod_draws[2],
                     stats.lod_draws[3], stats.mean_lambda);
-        std::printf("instances visible %u of %u; leaves drawn %u; full detail would be %llu vertices\n",
-                    stats.branch_draws, stats.instances, stats.leaves_drawn,
-                    (unsigned long long)full_detail_vertices(scene));
+        FullDetailSize full = full_detail_size(scene);
+        std::printf("instances visible %u of %u; leaves drawn %u; full detail: %llu triangles, %llu vertices "
+                    "(%.2f B as input assembly counts them, 3 per triangle)\n",
+                    stats.branch_draws, stats.instances, stats.leaves_drawn, (unsigned long long)full.triangles,
+                    (unsigned long long)full.vertices, 3e-9 * double(full.triangles));
         std::printf("CPU per frame (constants + record + submit): %.3f ms\n", stats.cpu_submit_ms);
         print_pipeline_stats("cull", stats.cull_pipeline);
         print_pipeline_stats("draw", stats.draw_pipeline);

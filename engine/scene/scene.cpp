@@ -154,12 +154,16 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
 
 namespace forest {
 
-uint64_t full_detail_vertices(const Scene& scene) {
-  std::vector<uint64_t> per_model;
+FullDetailSize full_detail_size(const Scene& scene) {
+  std::vector<FullDetailSize> per_model;
   for (const TreeModel& m : scene.models)
-    per_model.push_back(uint64_t(m.branches.vertices.size()) + uint64_t(m.leaves.size()) * m.leaf_card.vertices.size());
-  uint64_t total = 0;
-  for (const gpu::Instance& inst : scene.instances) total += per_model[inst.model];
+    per_model.push_back({uint64_t(m.branches.vertices.size()) + uint64_t(m.leaves.size()) * m.leaf_card.vertices.size(),
+                         uint64_t(m.branches.indices.size() / 3) + uint64_t(m.leaves.size()) * (m.leaf_card.indices.size() / 3)});
+  FullDetailSize total;
+  for (const gpu::Instance& inst : scene.instances) {
+    total.vertices += per_model[inst.model].vertices;
+    total.triangles += per_model[inst.model].triangles;
+  }
   return total;
 }
 

@@ -39,9 +39,13 @@ struct Scene {
 // Generates (or loads) the species models and places the trees. InputError on bad files.
 Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options = {});
 
-// Vertices of every instance at full detail (LOD0 bark + every leaf card), with no pruning
-// and no culling: the size of the forest the renderer avoids drawing.
-uint64_t full_detail_vertices(const Scene& scene);
+// Every instance at full detail (LOD0 bark + every leaf card), no pruning, no culling: the
+// size of the forest the renderer avoids drawing. `vertices` counts each mesh's distinct
+// vertices; input assembly processes 3 per triangle (`triangles`, indexed lists).
+struct FullDetailSize {
+  uint64_t vertices = 0, triangles = 0;
+};
+FullDetailSize full_detail_size(const Scene& scene);
 
 // Poisson-disc-like dart throwing on the terrain: deterministic for placement.seed.
 std::vector<gpu::Instance> place_trees(const SceneDesc& desc, const Terrain& terrain,

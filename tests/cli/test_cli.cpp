@@ -216,3 +216,26 @@ TEST_F(CliTest, BakeReportAndRenderOpt) {
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("1 visible"), std::string::npos) << o.out;
 }
+
+TEST_F(CliTest, RenderAlongCameraPath) {
+  fs::path scene = write("path.toml", scene_with("[[tree]]\nspecies = 0\nx = 0\nz = 0\n") +
+                                          "[[path]]\nname = \"orbit\"\nfps = 10\n"
+                                          "[[path.key]]\ntime = 0\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
+                                          "[[path.key]]\ntime = 2\nposition = [24, 6, 0]\ntarget = [0, 5, 0]\n");
+  std::string base = "render '" + scene.string() + "' --out '";
+  ASSERT_EQ(run(base + (dir_ / "a.png").string() + "' --path orbit --frame 0").code, 0);
+  Result b = run(base + (dir_ / "b.png").string() + "' --path orbit --frame 10");  // t = 1 s
+  ASSERT_EQ(b.code, 0) << b.err;
+  ASSERT_EQ(run(base + (dir_ / "c.png").string() + "' --path orbit --time 1").code, 0);
+  EXPECT_NE(slurp(dir_ / "a.png"), slurp(dir_ / "b.png"));
+  EXPECT_EQ(slurp(dir_ / "b.png"), slurp(dir_ / "c.png")) << "frame 10 at 10 fps is t = 1 s";
+  Result unknown = run(base + (dir_ / "e.png").string() + "' --path walk");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_NE(unknown.err.find("--path: no [[path]] named 'walk'"), std::string::npos) << unknown.err;
+  EXPECT_EQ(lines(unknown.err), 1u);
+  Result no_path = run(base + (dir_ / "e.png").string() + "' --frame 3");
+  EXPECT_EQ(no_path.code, 2);
+  EXPECT_NE(no_path.err.find("--frame: needs --path"), std::string::npos) << no_path.err;
+  EXPECT_EQ(run(base + (dir_ / "e.png").string() + "' --path orbit --frame 1 --time 1").code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "e.png"));
+}

@@ -328,3 +328,22 @@ TEST(SceneFile, BakeTableAndClusterKeys) {
   EXPECT_NE(error_of("[placement]\nclusters = -1\n").find("placement.clusters"), std::string::npos);
   EXPECT_NE(error_of("[placement]\ncluster_radius = 0\n").find("placement.cluster_radius"), std::string::npos);
 }
+
+TEST(Scene, FullDetailSizeSumsEveryInstance) {
+  Scene s;
+  TreeModel a, b;
+  a.branches.vertices.resize(4);
+  a.branches.indices = {0, 1, 2, 2, 1, 3};
+  a.leaf_card.vertices.resize(4);
+  a.leaf_card.indices = {0, 1, 2, 2, 1, 3};
+  a.leaves.resize(3);
+  b.branches.vertices.resize(10);
+  b.branches.indices.assign(27, 0);  // 9 triangles
+  b.branch_lods.push_back({a.branches, 1.0f});  // coarser levels are not full detail
+  s.models = {a, b};
+  s.instances.resize(3);
+  s.instances[0].model = 0, s.instances[1].model = 1, s.instances[2].model = 0;
+  FullDetailSize f = full_detail_size(s);
+  EXPECT_EQ(f.vertices, 2u * (4 + 3 * 4) + 10u);
+  EXPECT_EQ(f.triangles, 2u * (2 + 3 * 2) + 9u);
+}
