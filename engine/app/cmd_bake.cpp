@@ -4,60 +4,42 @@
 #include "engine/app/commands.h"
 #include "engine/app/progress.h"
 #include "engine/render/pr_bake.h"
+#include "engine/render/tree_bake.h"
 #include "generators/bake/asset_io.h"
-#include "generators/bake/hull.h"
 #include "generators/bake/priority.h"
 #include "generators/common/input_error.h"
 
 namespace forest::app {
 
 BakeResult bake_model(TreeModel& model, const BakeArgs& args) {
-  using clock = std::chrono::steady_clock;
-  auto t0 = clock::now();
-  std::optional<Priority> priority = parse_priority(args.priority);
-  if (!priority) throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined, layered)");
-  uint64_t seed = args.seed ? *args.seed : model.meta.value("seed", uint64_t(1));
-
-  HullParams hp;
-  hp.seed = seed;
-  Hull hull = build_hull(model.leaves, plant_height(model), hp);
-  attach_hull(model, hull);
-  apply_priority(model, hull, *priority, seed);
-  auto t_hull = clock::now();
-
+  TreeBakeSettings settings;
+  settings.priority = args.priority;
+  settings.seed = args.seed;
+  settings.views = args.views;
+  settings.resolution = args.resolution;
+  if (!parse_priority(args.priority))  // before creating a Vulkan context
+    throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined, layered)");
   vk::Context ctx;
   vk::ContextOptions options;
   options.device = args.device;
   options.validation = vk::validation_from_env();
-  PrMeasurement pm;
+  TreeBakeResult tb;
   try {
     vk::create_context(ctx, options);
     ProgressBar bar("bake: measuring PR");
-    PrBakeOptions po;
-    po.resolution = args.resolution;
-    po.views = args.views;
-    po.progress = [&](double f) { bar.update(f); };
-    pm = measure_pr_tables(ctx, model, po);
+    settings.progress = [&](double f) { bar.update(f); };
+    tb = bake_tree_model(ctx, model, settings);
     bar.finish();
-    if (ctx.validation_messages > 0)
-      throw vk::VkFailure(std::to_string(ctx.validation_messages.load()) + " Vulkan validation message(s) during bake");
   } catch (...) {
     vk::destroy_context(ctx);
     throw;
   }
   vk::destroy_context(ctx);
-  pm.tables.priority = args.priority;
-  model.meta["pr_tables"] = to_json(pm.tables);
-  nlohmann::json samples = nlohmann::json::array();  // the PR diagram behind the tables
-  for (const PrSample& ps : pm.samples)
-    samples.push_back({ps.lambda, ps.scale, ps.pr.precision(), ps.pr.recall()});
-  model.meta["pr_samples"] = samples;
-  model.meta["baked"] = true;
   BakeResult r;
-  r.measurement = std::move(pm);
-  r.hull_seconds = std::chrono::duration<double>(t_hull - t0).count();
-  r.pr_seconds = std::chrono::duration<double>(clock::now() - t_hull).count();
-  r.hull_triangles = hull.mesh.indices.size() / 3;
+  r.measurement = std::move(tb.measurement);
+  r.hull_seconds = tb.hull_seconds;
+  r.pr_seconds = tb.pr_seconds;
+  r.hull_triangles = tb.hull_triangles;
   return r;
 }
 

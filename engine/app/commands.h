@@ -94,6 +94,10 @@ struct RenderArgs {
   std::optional<bool> occlusion;  // --occlusion on|off, overrides [render].occlusion
   bool stats = false;
   bool validate = false;
+  std::string path;              // camera path name ([[path]] name)
+  std::optional<uint32_t> frame; // frame of the path (time = frame / fps)
+  std::optional<double> time;    // seconds along the path
+  std::string cache;             // species cache folder (default: default_cache_dir())
 };
 int run_render(const RenderArgs& args);
 

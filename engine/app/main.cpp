@@ -91,6 +91,13 @@ int main(int argc, char** argv) {
                                                "Depth-buffer occlusion feedback (overrides [render].occlusion)")
                             ->check(CLI::IsMember({"on", "off"}));
   render_cmd->add_flag("--stats", render.stats, "Print GPU statistics and timings");
+  uint32_t render_frame = 0;
+  double render_time = 0.0;
+  render_cmd->add_option("--path", render.path, "Camera path ([[path]] name) to take the camera from");
+  auto* frame_opt = render_cmd->add_option("--frame", render_frame, "Frame of --path (time = frame / fps)");
+  auto* time_opt = render_cmd->add_option("--time", render_time, "Seconds along --path")->check(CLI::Range(0.0, 1e6));
+  frame_opt->excludes(time_opt);
+  render_cmd->add_option("--cache", render.cache, "Species cache folder (default: $FOREST_CACHE or ~/.cache/forest)");
   render_cmd->add_flag("--validate", render.validate,
                        "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
 
@@ -165,6 +172,8 @@ int main(int argc, char** argv) {
       if (*width_opt) render.width = width;
       if (*height_opt) render.height = height;
       if (*occlusion_opt) render.occlusion = occlusion == "on";
+      if (*frame_opt) render.frame = render_frame;
+      if (*time_opt) render.time = render_time;
       return app::run_render(render);
     }
     if (*walk_cmd) {

@@ -1,6 +1,7 @@
 #include "engine/render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -231,6 +232,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   cbai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   cbai.commandBufferCount = 1;
   VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cbai, &cmd_));
+  pipeline_stats_ = create_gpu_stats(ctx);
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &fence_));
 }
@@ -281,6 +283,7 @@ Renderer::~Renderer() {
   vkDestroyFence(dev, fence_, nullptr);
   vkFreeCommandBuffers(dev, ctx_.command_pool, 1, &cmd_);
   vkDestroyQueryPool(dev, timestamps_, nullptr);
+  destroy_gpu_stats(ctx_, pipeline_stats_);
   for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_, terrain_wire_, branches_wire_, leaves_wire_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -358,6 +361,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
   vkCmdResetQueryPool(cmd, timestamps_, 0, kTimestampCount);
+  reset_gpu_stats(cmd, pipeline_stats_);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps_, 0);
 
   // ---- cull: compacted indirect draws ----
@@ -365,10 +369,12 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  begin_gpu_stats(cmd, pipeline_stats_, StatsPass::cull);
   if (instance_count_ > 0) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
     vkCmdDispatch(cmd, (instance_count_ + CULL_GROUP_SIZE - 1) / CULL_GROUP_SIZE, 1, 1);
   }
+  end_gpu_stats(cmd, pipeline_stats_, StatsPass::cull);
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                          VK_PIPELINE_STAGE_2_TRANSFER_BIT,
@@ -430,6 +436,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
   ri.colorAttachmentCount = 1;
   ri.pColorAttachments = &color;
   ri.pDepthAttachment = &depth;
+  begin_gpu_stats(cmd, pipeline_stats_, StatsPass::draw);
   vkCmdBeginRendering(cmd, &ri);
   VkViewport viewport{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
   VkRect2D scissor{{0, 0}, {width_, height_}};
@@ -457,6 +464,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
                                   offsetof(gpu::DrawCounts, leaf_draws), instance_count_, stride);
   }
   vkCmdEndRendering(cmd);
+  end_gpu_stats(cmd, pipeline_stats_, StatsPass::draw);
   color_layout_ = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, timestamps_, 2);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamps_, 4);
@@ -570,7 +578,8 @@ void Renderer::record_pr_count(VkCommandBuffer cmd, const gpu::PrCountPush& push
   vkCmdDispatch(cmd, (push.pixel_count + PR_GROUP_SIZE - 1) / PR_GROUP_SIZE, 1, 1);
 }
 
-void Renderer::submit_and_wait() {
+double Renderer::submit_and_wait() {
+  auto cpu_start = std::chrono::steady_clock::now();
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd_;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -578,10 +587,13 @@ void Renderer::submit_and_wait() {
   si.pCommandBufferInfos = &cbi;
   VK_CHECK(vkResetFences(ctx_.device, 1, &fence_));
   VK_CHECK(vkQueueSubmit2(ctx_.queue, 1, &si, fence_));
+  double cpu_submit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   VK_CHECK(vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX));
+  return cpu_submit_ms;
 }
 
 FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& settings, Output output) {
+  auto cpu_start = std::chrono::steady_clock::now();
   gpu::FrameData fd = frame_data(camera, settings);
   CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
   const bool cut = settings.occlusion && camera_cut(cm, camera, settings);
@@ -600,7 +612,8 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   pyramid_valid_ = settings.occlusion;
   pyramid_view_proj_ = cm.view_proj;
   pyramid_camera_ = camera;
-  submit_and_wait();
+  double cpu_record_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
+  double cpu_submit_ms = cpu_record_ms + submit_and_wait();
 
   FrameStats stats;
   stats.instances = instance_count_;
@@ -624,6 +637,9 @@ FrameStats Renderer::submit(const CameraDesc& camera, const FrameSettings& setti
   stats.draw_ms = double(ts[2] - ts[1]) * period_ms;
   stats.frame_ms = double(ts[3] - ts[0]) * period_ms;
   stats.pyramid_ms = double(ts[5] - ts[4]) * period_ms;
+  stats.cpu_submit_ms = cpu_submit_ms;
+  stats.cull_pipeline = read_gpu_stats(ctx_, pipeline_stats_, StatsPass::cull);
+  stats.draw_pipeline = read_gpu_stats(ctx_, pipeline_stats_, StatsPass::draw);
   return stats;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/render/depth_pyramid.h"
+#include "engine/render/gpu_stats.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
 #include "engine/vk/resources.h"
@@ -52,6 +53,8 @@ struct FrameStats {
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
+  double cpu_submit_ms = 0.0;  // CPU: frame constants + record + submit, not the GPU wait
+  PipelineStats cull_pipeline, draw_pipeline;  // pipeline-statistics queries per pass
 };
 
 // Precision/Recall of a test frame's coverage against a reference (seed 000 §7.2.2).
@@ -114,7 +117,8 @@ class Renderer {
   void record_pyramid(VkCommandBuffer cmd);
   bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;
   gpu::FrameData frame_data(const CameraDesc& camera, const FrameSettings& settings) const;
-  void submit_and_wait();
+  // Returns the CPU milliseconds spent up to the queue submission (not the wait).
+  double submit_and_wait();
   // Coverage batches: one mask render (branches and/or leaves) recorded into `cmd`.
   void record_coverage_pass(VkCommandBuffer cmd, const gpu::FrameData& frame, bool branches, bool leaves);
   void record_pr_count(VkCommandBuffer cmd, const gpu::PrCountPush& push);
@@ -164,6 +168,7 @@ class Renderer {
   bool wireframe_ = false;  // this frame draws with the *_wire_ pipelines
   VkImageLayout color_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
   VkQueryPool timestamps_ = VK_NULL_HANDLE;
+  GpuStatsQueries pipeline_stats_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
 };

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 
 #include <glm/gtc/constants.hpp>
 
+#include "engine/scene/species_cache.h"
 #include "generators/bake/asset_io.h"
 #include "generators/common/rng.h"
 #include "generators/methods/methods.h"
@@ -52,6 +54,17 @@ struct SpacingGrid {
   }
 };
 
+glm::vec2 uniform_in_disc(Rng& rng, glm::vec2 center, float radius) {
+  double r = radius * std::sqrt(rng.uniform()), phi = rng.uniform(0.0, 2.0 * glm::pi<double>());
+  return center + glm::vec2(float(r * std::cos(phi)), float(r * std::sin(phi)));
+}
+
+// Two independent standard normal numbers (Box-Muller).
+glm::vec2 gaussian2(Rng& rng) {
+  double r = std::sqrt(-2.0 * std::log(1.0 - rng.uniform())), phi = rng.uniform(0.0, 2.0 * glm::pi<double>());
+  return {float(r * std::cos(phi)), float(r * std::sin(phi))};
+}
+
 }  // namespace
 
 std::vector<gpu::Instance> place_trees(const SceneDesc& desc, const Terrain& terrain, uint32_t* shortfall) {
@@ -71,17 +84,27 @@ std::vector<gpu::Instance> place_trees(const SceneDesc& desc, const Terrain& ter
   double total = 0.0;
   for (const SpeciesDesc& s : desc.species) cumulative.push_back(total += s.weight);
 
+  // Thomas cluster process: parents uniform in the disc; each candidate is a Gaussian offset
+  // from a random parent. Its own stream, so uniform scenes keep their placements.
+  Rng cluster_rng(p.seed, 0xc1a5732);
+  std::vector<glm::vec2> parents(p.clusters);
+  for (glm::vec2& c : parents) c = uniform_in_disc(cluster_rng, p.center, p.radius);
+
   float min_normal_y = std::cos(glm::radians(p.max_slope_deg));
   uint64_t attempts = uint64_t(p.count) * 30, placed = 0;
   for (uint64_t a = 0; a < attempts && placed < p.count; ++a) {
-    // Uniform in the disc, clipped to the terrain.
-    double r = p.radius * std::sqrt(rng.uniform()), phi = rng.uniform(0.0, 2.0 * glm::pi<double>());
-    glm::vec2 xz = p.center + glm::vec2(float(r * std::cos(phi)), float(r * std::sin(phi)));
+    // Uniform in the disc (or around a cluster parent), clipped to the terrain.
+    glm::vec2 xz = uniform_in_disc(rng, p.center, p.radius);
+    if (!parents.empty()) {
+      glm::vec2 parent = parents[std::min(size_t(cluster_rng.uniform() * double(parents.size())), parents.size() - 1)];
+      xz = parent + p.cluster_radius * gaussian2(cluster_rng);
+    }
     double pick = rng.uniform(0.0, total);
     float scale = float(rng.uniform(p.scale_min, p.scale_max));
     float yaw = float(rng.uniform(0.0, 2.0 * glm::pi<double>()));
     uint32_t tint = pack_tint(rng);
     if (std::abs(xz.x) > half || std::abs(xz.y) > half) continue;
+    if (!parents.empty() && glm::distance(xz, p.center) > p.radius) continue;  // a cluster's tail outside the region
     if (terrain.normal_at(xz.x, xz.y).y < min_normal_y) continue;
     if (!grid.free(xz, p.min_spacing)) continue;
     uint32_t species = uint32_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
@@ -96,21 +119,52 @@ std::vector<gpu::Instance> place_trees(const SceneDesc& desc, const Terrain& ter
   return out;
 }
 
-Scene build_scene(const SceneDesc& desc) {
+Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   Scene scene;
   scene.desc = desc;
   scene.terrain = make_terrain(desc.terrain);
   for (const SpeciesDesc& s : desc.species) {
     if (!s.model.empty()) {
       scene.models.push_back(load_glb(s.model));
+    } else if (options.use_cache) {
+      std::filesystem::path dir = options.cache_dir.empty() ? default_cache_dir() : options.cache_dir;
+      CachedSpecies c = load_or_bake_species(s, desc.bake, dir, options.ctx);
+      (c.hit ? scene.cache_hits : scene.cache_misses)++;
+      if (options.log) {
+        char line[512];
+        if (c.hit)
+          std::snprintf(line, sizeof(line), "species %s: cached %s", s.preset.filename().c_str(), c.file.c_str());
+        else
+          std::snprintf(line, sizeof(line), "species %s: generated in %.1f s, baked in %.1f s -> %s",
+                        s.preset.filename().c_str(), c.generate_seconds, c.bake_seconds, c.file.c_str());
+        options.log(line);
+      }
+      scene.models.push_back(std::move(c.model));
     } else {
-      GenerateOptions options;
-      options.seed = s.seed;
-      scene.models.push_back(generate_from_species(s.preset, options));
+      GenerateOptions generate;
+      generate.seed = s.seed;
+      scene.models.push_back(generate_from_species(s.preset, generate));
     }
   }
   scene.instances = place_trees(desc, scene.terrain, &scene.placement_shortfall);
   return scene;
+}
+
+}  // namespace forest
+
+namespace forest {
+
+FullDetailSize full_detail_size(const Scene& scene) {
+  std::vector<FullDetailSize> per_model;
+  for (const TreeModel& m : scene.models)
+    per_model.push_back({uint64_t(m.branches.vertices.size()) + uint64_t(m.leaves.size()) * m.leaf_card.vertices.size(),
+                         uint64_t(m.branches.indices.size() / 3) + uint64_t(m.leaves.size()) * (m.leaf_card.indices.size() / 3)});
+  FullDetailSize total;
+  for (const gpu::Instance& inst : scene.instances) {
+    total.vertices += per_model[inst.model].vertices;
+    total.triangles += per_model[inst.model].triangles;
+  }
+  return total;
 }
 
 }  // namespace forest

@@ -68,14 +68,55 @@ void read_sky(const TomlTable& t, SkyDesc& s) {
   s.fog_density = float(t.number("fog_density", s.fog_density, 0.0, 1.0));
 }
 
-void read_terrain(const TomlTable& t, TerrainDesc& d) {
-  t.check_keys({"size", "resolution", "height", "feature_size", "octaves", "seed"});
+void read_terrain(const TomlTable& t, TerrainDesc& d, const std::filesystem::path& base) {
+  t.check_keys({"size", "resolution", "height", "feature_size", "octaves", "seed", "heightmap", "height_min"});
   d.size = float(t.number("size", d.size, 1.0, 1e5));
   d.resolution = uint32_t(t.integer("resolution", d.resolution, 1, 2048));
   d.height = float(t.number("height", d.height, 0.0, 1e4));
   d.feature_size = float(t.number("feature_size", d.feature_size, 1.0, 1e5));
   d.octaves = uint32_t(t.integer("octaves", d.octaves, 1, 12));
   d.seed = uint64_t(t.integer("seed", int64_t(d.seed), 0, std::numeric_limits<int64_t>::max()));
+  d.height_min = float(t.number("height_min", d.height_min, -1e4, 1e4));
+  if (t.has("heightmap")) {
+    std::filesystem::path p = t.string("heightmap");
+    if (p.empty()) t.fail("heightmap", "must not be empty");
+    if (p.is_relative()) p = base / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) t.fail("heightmap", "file not found: " + p.string());
+    d.heightmap = p;
+  }
+}
+
+void read_bake(const TomlTable& t, BakeDesc& b) {
+  t.check_keys({"priority", "views", "resolution"});
+  b.priority = t.choice("priority", b.priority, {"random", "density", "orientation", "combined"});
+  b.views = uint32_t(t.integer("views", b.views, 1, 64));
+  b.resolution = uint32_t(t.integer("resolution", b.resolution, 32, 4096));
+}
+
+CameraPath read_path(const TomlTable& t) {
+  t.check_keys({"name", "fps", "loop", "key"});
+  CameraPath p;
+  p.line = int(t.raw().source().begin.line);
+  p.name = t.string("name");
+  if (p.name.empty()) t.fail("name", "must not be empty");
+  p.fps = float(t.number("fps", p.fps, 1e-3, 1e4));
+  p.loop = t.boolean("loop", false);
+  std::vector<TomlTable> keys = t.tables("key");
+  if (keys.size() < 2) t.fail("key", "a path needs at least 2 keys ([[path.key]] with time, position, target)");
+  for (const TomlTable& k : keys) {
+    k.check_keys({"time", "position", "target", "fov"});
+    CameraKey key;
+    key.time = float(k.number("time", 0.0, kBig));
+    key.position = k.vec3("position", -kBig, kBig);
+    key.target = k.vec3("target", -kBig, kBig);
+    key.fov_deg = float(k.number("fov", 50.0, 1.0, 170.0));
+    if (glm::length(key.target - key.position) < 1e-4f) k.fail("target", "must differ from position");
+    if (!p.keys.empty() && key.time <= p.keys.back().time)
+      k.fail("time", "must be greater than the previous key's time (" + std::to_string(p.keys.back().time) + ")");
+    p.keys.push_back(key);
+  }
+  return p;
 }
 
 SpeciesDesc read_species(const TomlTable& t, const std::filesystem::path& base) {
@@ -100,7 +141,7 @@ SpeciesDesc read_species(const TomlTable& t, const std::filesystem::path& base) 
 }
 
 void read_placement(const TomlTable& t, PlacementDesc& p) {
-  t.check_keys({"count", "seed", "min_spacing", "radius", "center", "scale", "max_slope"});
+  t.check_keys({"count", "seed", "min_spacing", "radius", "center", "scale", "max_slope", "clusters", "cluster_radius"});
   p.count = uint32_t(t.integer("count", 0, 0, 1'000'000));
   p.seed = uint64_t(t.integer("seed", int64_t(p.seed), 0, std::numeric_limits<int64_t>::max()));
   p.min_spacing = float(t.number("min_spacing", p.min_spacing, 0.0, 1e4));
@@ -113,6 +154,8 @@ void read_placement(const TomlTable& t, PlacementDesc& p) {
     p.scale_max = v.y;
   }
   p.max_slope_deg = float(t.number("max_slope", p.max_slope_deg, 0.0, 90.0));
+  p.clusters = uint32_t(t.integer("clusters", p.clusters, 0, 1'000'000));
+  p.cluster_radius = float(t.number("cluster_radius", p.cluster_radius, 1e-2, kBig));
 }
 
 TreeDesc read_tree(const TomlTable& t, size_t species_count) {
@@ -131,11 +174,18 @@ TreeDesc read_tree(const TomlTable& t, size_t species_count) {
 
 SceneDesc read_scene(const TomlTable& root, const std::filesystem::path& base) {
   SceneDesc s;
-  root.check_keys({"render", "camera", "sky", "terrain", "species", "placement", "tree"});
+  root.check_keys({"render", "camera", "sky", "terrain", "species", "placement", "tree", "path", "bake"});
   if (auto t = root.table("render")) read_render(*t, s);
   if (auto t = root.table("camera")) read_camera(*t, s.camera);
   if (auto t = root.table("sky")) read_sky(*t, s.sky);
-  if (auto t = root.table("terrain")) read_terrain(*t, s.terrain);
+  if (auto t = root.table("terrain")) read_terrain(*t, s.terrain, base);
+  if (auto t = root.table("bake")) read_bake(*t, s.bake);
+  for (const TomlTable& t : root.tables("path")) {
+    CameraPath p = read_path(t);
+    for (const CameraPath& q : s.paths)
+      if (q.name == p.name) t.fail("name", "a path named '" + p.name + "' is already defined");
+    s.paths.push_back(std::move(p));
+  }
   for (const TomlTable& t : root.tables("species")) s.species.push_back(read_species(t, base));
   if (auto t = root.table("placement")) {
     read_placement(*t, s.placement);

@@ -20,6 +20,23 @@ struct CameraDesc {
   float far = 2000.0f;    // culling distance
 };
 
+// One keyframe of a camera path ([[path.key]]).
+struct CameraKey {
+  float time = 0.0f;  // seconds, strictly increasing along the path
+  glm::vec3 position{0.0f};
+  glm::vec3 target{0.0f};
+  float fov_deg = 50.0f;
+};
+
+// A named camera path ([[path]]): `forest render --path NAME --time T | --frame N`.
+struct CameraPath {
+  std::string name;
+  float fps = 30.0f;    // frames per second for --frame and benchmarks
+  bool loop = false;    // time wraps; the last key should repeat the first
+  std::vector<CameraKey> keys;
+  int line = 0;
+};
+
 struct SkyDesc {
   glm::vec3 sun_direction{0.45f, 0.75f, 0.35f};  // toward the sun, normalized on load
   float sun_intensity = 3.0f;
@@ -35,6 +52,19 @@ struct TerrainDesc {
   float feature_size = 120.0f;  // wavelength of the largest hills, meters
   uint32_t octaves = 5;
   uint64_t seed = 1;
+  // Heightmap image instead of noise (8/16-bit PNG, EXR, ... via OIIO): the first channel,
+  // normalized to [0, 1], maps linearly to [height_min, height_min + height] meters and
+  // covers the whole `size` square (top row of the image = −z edge). Sampled bilinearly.
+  std::filesystem::path heightmap;
+  float height_min = 0.0f;
+};
+
+// How a species spec is baked when it is generated on first use ([bake]); part of the
+// species cache key.
+struct BakeDesc {
+  std::string priority = "combined";
+  uint32_t views = 6;
+  uint32_t resolution = 256;
 };
 
 struct SpeciesDesc {
@@ -53,6 +83,11 @@ struct PlacementDesc {
   glm::vec2 center{0.0f};    // x, z
   float scale_min = 0.8f, scale_max = 1.2f;
   float max_slope_deg = 35.0f;
+  // Thomas cluster process on top of the spacing rule: `clusters` parent points uniform in
+  // the disc, trees offset from a random parent by a Gaussian of σ = cluster_radius.
+  // 0 clusters = uniform (Poisson-disc-like) placement.
+  uint32_t clusters = 0;
+  float cluster_radius = 10.0f;
 };
 
 struct TreeDesc {  // a hand-placed tree
@@ -79,6 +114,8 @@ struct SceneDesc {
   std::vector<SpeciesDesc> species;
   PlacementDesc placement;
   std::vector<TreeDesc> trees;
+  std::vector<CameraPath> paths;
+  BakeDesc bake;
 };
 
 SceneDesc load_scene_file(const std::filesystem::path& file);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/scene/heightmap.h"
 #include "generators/common/rng.h"
 
 namespace forest {
@@ -33,6 +34,15 @@ Terrain make_terrain(const TerrainDesc& desc) {
   uint32_t n = desc.resolution + 1;
   t.heights.resize(size_t(n) * n);
   float cell = desc.size / float(desc.resolution);
+  if (!desc.heightmap.empty()) {
+    // Image u runs along +x, v (rows, top first) along +z; both span the whole square.
+    Heightmap map = read_heightmap(desc.heightmap);
+    for (uint32_t j = 0; j < n; ++j)
+      for (uint32_t i = 0; i < n; ++i)
+        t.heights[size_t(j) * n + i] =
+            desc.height_min + desc.height * map.sample(float(i) / float(desc.resolution), float(j) / float(desc.resolution));
+    return t;
+  }
   float norm = 0.0f;
   for (uint32_t o = 0; o < desc.octaves; ++o) norm += std::pow(0.5f, float(o));
   for (uint32_t j = 0; j < n; ++j)

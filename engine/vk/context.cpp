@@ -244,6 +244,9 @@ void create_context(Context& ctx, const ContextOptions& options) {
   vkGetPhysicalDeviceFeatures(ctx.physical, &available);
   ctx.fill_mode_non_solid = available.fillModeNonSolid;  // optional: only the wireframe view uses it
   features.features.fillModeNonSolid = available.fillModeNonSolid;
+  // Optional: pipeline-statistics queries (`forest render --stats` prints "n/a" without).
+  ctx.pipeline_statistics = available.pipelineStatisticsQuery == VK_TRUE;
+  features.features.pipelineStatisticsQuery = available.pipelineStatisticsQuery;
 
   const char* swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};

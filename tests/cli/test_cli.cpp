@@ -72,7 +72,8 @@ std::string scene_with(const std::string& body) {
   return "[render]\nwidth = 64\nheight = 48\n"
          "[camera]\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
          "[terrain]\nsize = 100\nresolution = 8\n"
-         "[[species]]\npreset = \"" + kSource + "/scenes/species/broadleaf.toml\"\n" + body;
+         "[[species]]\npreset = \"" + kSource + "/scenes/species/broadleaf.toml\"\n" + body +
+         "\n[bake]\nviews = 1\nresolution = 32\n";  // presets are baked on first use: keep it cheap
 }
 
 // Parses XML with expat: false when it is not well-formed; counts <polyline> elements.
@@ -408,4 +409,27 @@ TEST_F(CliTest, GalleryBadInputsExitTwoWithoutOutput) {
   EXPECT_EQ(run("gallery --species-dir '" + dir_.string() + "'").code, 2);  // --out is required
   EXPECT_EQ(run("gallery --out '" + out.string() + "' --size 5").code, 2);
   EXPECT_EQ(listing(), (std::vector<std::string>{"bad.toml"}));
+}
+
+TEST_F(CliTest, RenderAlongCameraPath) {
+  fs::path scene = write("path.toml", scene_with("[[tree]]\nspecies = 0\nx = 0\nz = 0\n") +
+                                          "[[path]]\nname = \"orbit\"\nfps = 10\n"
+                                          "[[path.key]]\ntime = 0\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
+                                          "[[path.key]]\ntime = 2\nposition = [24, 6, 0]\ntarget = [0, 5, 0]\n");
+  std::string base = "render '" + scene.string() + "' --out '";
+  ASSERT_EQ(run(base + (dir_ / "a.png").string() + "' --path orbit --frame 0").code, 0);
+  Result b = run(base + (dir_ / "b.png").string() + "' --path orbit --frame 10");  // t = 1 s
+  ASSERT_EQ(b.code, 0) << b.err;
+  ASSERT_EQ(run(base + (dir_ / "c.png").string() + "' --path orbit --time 1").code, 0);
+  EXPECT_NE(slurp(dir_ / "a.png"), slurp(dir_ / "b.png"));
+  EXPECT_EQ(slurp(dir_ / "b.png"), slurp(dir_ / "c.png")) << "frame 10 at 10 fps is t = 1 s";
+  Result unknown = run(base + (dir_ / "e.png").string() + "' --path walk");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_NE(unknown.err.find("--path: no [[path]] named 'walk'"), std::string::npos) << unknown.err;
+  EXPECT_EQ(lines(unknown.err), 1u);
+  Result no_path = run(base + (dir_ / "e.png").string() + "' --frame 3");
+  EXPECT_EQ(no_path.code, 2);
+  EXPECT_NE(no_path.err.find("--frame: needs --path"), std::string::npos) << no_path.err;
+  EXPECT_EQ(run(base + (dir_ / "e.png").string() + "' --path orbit --frame 1 --time 1").code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "e.png"));
 }
