@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev
   libtinygltf-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libtbb-dev
   fonts-dejavu-core
+  clang libclang-rt-14-dev
   nodejs npm
 )
 

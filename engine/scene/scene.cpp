@@ -7,6 +7,8 @@
 #include <glm/gtc/constants.hpp>
 
 #include "generators/bake/asset_io.h"
+#include "generators/common/input_error.h"
+#include "generators/common/limits.h"
 #include "generators/common/rng.h"
 #include "generators/methods/methods.h"
 
@@ -109,6 +111,13 @@ Scene build_scene(const SceneDesc& desc) {
       scene.models.push_back(generate_from_species(s.preset, options));
     }
   }
+  // Every model's leaves share one GPU buffer: bound its size (generators/common/limits.h).
+  size_t leaves = 0;
+  for (const TreeModel& m : scene.models) leaves += m.leaves.size();
+  if (leaves > kMaxSceneLeaves)
+    throw InputError(desc.file.string(), 0, "species",
+                     "the models have " + std::to_string(leaves) + " leaves together, more than the limit of " +
+                         std::to_string(kMaxSceneLeaves));
   scene.instances = place_trees(desc, scene.terrain, &scene.placement_shortfall);
   return scene;
 }

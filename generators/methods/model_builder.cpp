@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "generators/common/limits.h"
 #include "generators/tree/mesh_lod.h"
 
 namespace forest {
@@ -35,6 +36,10 @@ nlohmann::json toml_to_json(const toml::table& table) {
 
 TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
                            const MesherParams& mesher) {
+  if (graph.leaves.size() > kMaxLeavesPerModel)
+    throw InputError(d.species, 0, "leaf_count",
+                     std::to_string(graph.leaves.size()) + " leaves, more than the limit of " +
+                         std::to_string(kMaxLeavesPerModel) + " per model");
   TreeModel model;
   model.branches = mesh_branches(graph, mesher);
   optimize_mesh(model.branches);
