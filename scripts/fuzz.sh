@@ -28,7 +28,8 @@ for t in "${targets[@]}"; do
   echo "fuzz.sh: $t for ${seconds} s"
   if ! ASAN_OPTIONS="halt_on_error=1:abort_on_error=1" \
        UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
-       "build-fuzz/tests/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+       LSAN_OPTIONS="suppressions=tests/fuzz/lsan.supp:print_suppressions=0" \
+       "build-fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
          -print_final_stats=1 -artifact_prefix="build-fuzz/artifacts/$t-" \
          "build-fuzz/corpus/$t" "tests/fuzz/corpus/$t" >"build-fuzz/fuzz-$t.log" 2>&1; then
     echo "fuzz.sh: $t FAILED; last lines of build-fuzz/fuzz-$t.log:" >&2
