@@ -12,6 +12,7 @@ packages=(
   libtinygltf-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libtbb-dev
   fonts-dejavu-core
   xvfb xauth
+  clang libclang-rt-14-dev
   nodejs npm
 )
 

@@ -24,5 +24,13 @@ if [[ -z "${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-}${FOREST_DEVICE:-}" && -f /us
 fi
 export FOREST_VALIDATION=1
 
+# CI-sized fuzzing of every loader of untrusted input (clang, ASan + UBSan, build-fuzz/):
+# FOREST_FUZZ_SECONDS per target (default 35, ~4 min in all; 0 skips it).
+fuzz_status=0
+if [[ "${FOREST_FUZZ_SECONDS:-35}" != 0 ]]; then
+  scripts/fuzz.sh "${FOREST_FUZZ_SECONDS:-35}" || fuzz_status=$?
+fi
+
 cd build
 ctest --output-on-failure -j"$(nproc)" "$@"
+[[ $fuzz_status -eq 0 ]] || { echo "test.sh: fuzzing found a failure (see above; inputs in build-fuzz/artifacts/)"; exit 1; }

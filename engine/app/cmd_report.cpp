@@ -35,8 +35,12 @@ int run_report(const ReportArgs& args) {
   std::map<float, std::vector<std::pair<float, glm::vec2>>> by_lambda;  // λ -> (s, (R, P))
   if (model.meta.contains("pr_samples") && model.meta["pr_samples"].is_array())
     for (const auto& s : model.meta["pr_samples"])
-      if (s.is_array() && s.size() == 4)
+      if (s.is_array() && s.size() == 4) {
+        for (const auto& x : s)  // finite and within float range before narrowing
+          if (!x.is_number() || !(std::abs(x.get<double>()) <= 1e6))
+            throw InputError(args.model, 0, "extras.forest.pr_samples", "expected [lambda, s, precision, recall] numbers");
         by_lambda[s[0].get<float>()].push_back({s[1].get<float>(), {s[3].get<float>(), s[2].get<float>()}});
+      }
   Plot pr{"PR diagram: " + name, "recall", "precision", {0, 1}, {0, 1}, {}};
   std::string samples_csv = "lambda,s,precision,recall\n";
   const float shown[] = {0.1f, 0.2f, 0.3f, 0.5f, 0.7f, 0.9f};

@@ -9,6 +9,8 @@
 
 #include "engine/scene/species_cache.h"
 #include "generators/bake/asset_io.h"
+#include "generators/common/input_error.h"
+#include "generators/common/limits.h"
 #include "generators/common/rng.h"
 #include "generators/methods/methods.h"
 
@@ -146,6 +148,13 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
       scene.models.push_back(generate_from_species(s.preset, generate));
     }
   }
+  // Every model's leaves share one GPU buffer: bound its size (generators/common/limits.h).
+  size_t leaves = 0;
+  for (const TreeModel& m : scene.models) leaves += m.leaves.size();
+  if (leaves > kMaxSceneLeaves)
+    throw InputError(desc.file.string(), 0, "species",
+                     "the models have " + std::to_string(leaves) + " leaves together, more than the limit of " +
+                         std::to_string(kMaxSceneLeaves));
   scene.instances = place_trees(desc, scene.terrain, &scene.placement_shortfall);
   return scene;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "generators/common/limits.h"
 #include "generators/common/toml_reader.h"
 #include "gpu_types.h"
 
@@ -142,7 +143,7 @@ SpeciesDesc read_species(const TomlTable& t, const std::filesystem::path& base) 
 
 void read_placement(const TomlTable& t, PlacementDesc& p) {
   t.check_keys({"count", "seed", "min_spacing", "radius", "center", "scale", "max_slope", "clusters", "cluster_radius"});
-  p.count = uint32_t(t.integer("count", 0, 0, 1'000'000));
+  p.count = uint32_t(t.integer("count", 0, 0, kMaxTreeInstances));
   p.seed = uint64_t(t.integer("seed", int64_t(p.seed), 0, std::numeric_limits<int64_t>::max()));
   p.min_spacing = float(t.number("min_spacing", p.min_spacing, 0.0, 1e4));
   p.radius = float(t.number("radius", p.radius, 0.0, kBig));
@@ -190,7 +191,14 @@ SceneDesc read_scene(const TomlTable& root, const std::filesystem::path& base) {
   if (auto t = root.table("placement")) {
     read_placement(*t, s.placement);
   }
+  if (s.species.size() > kMaxSceneSpecies)
+    root.fail("species", std::to_string(s.species.size()) + " [[species]], more than the limit of " +
+                             std::to_string(kMaxSceneSpecies));
   for (const TomlTable& t : root.tables("tree")) s.trees.push_back(read_tree(t, s.species.size()));
+  if (uint64_t(s.placement.count) + s.trees.size() > kMaxTreeInstances)
+    root.fail(s.trees.empty() ? "placement" : "tree",
+              std::to_string(uint64_t(s.placement.count) + s.trees.size()) +
+                  " trees (placement.count + [[tree]]), more than the limit of " + std::to_string(kMaxTreeInstances));
   if ((s.placement.count > 0 || !s.trees.empty()) && s.species.empty())
     root.fail("species", "trees are placed but no [[species]] is defined");
   if (s.placement.count > 0) {

@@ -10,10 +10,38 @@
 
 namespace forest::vk {
 
+const char* result_name(VkResult result) {
+  switch (result) {
+    case VK_SUCCESS: return "VK_SUCCESS";
+    case VK_NOT_READY: return "VK_NOT_READY";
+    case VK_TIMEOUT: return "VK_TIMEOUT";
+    case VK_INCOMPLETE: return "VK_INCOMPLETE";
+    case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+    case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+    case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
+    case VK_ERROR_MEMORY_MAP_FAILED: return "VK_ERROR_MEMORY_MAP_FAILED";
+    case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
+    case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+    case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
+    case VK_ERROR_TOO_MANY_OBJECTS: return "VK_ERROR_TOO_MANY_OBJECTS";
+    case VK_ERROR_FORMAT_NOT_SUPPORTED: return "VK_ERROR_FORMAT_NOT_SUPPORTED";
+    case VK_ERROR_FRAGMENTED_POOL: return "VK_ERROR_FRAGMENTED_POOL";
+    case VK_ERROR_OUT_OF_POOL_MEMORY: return "VK_ERROR_OUT_OF_POOL_MEMORY";
+    default: return "VkResult";
+  }
+}
+
 void check(VkResult result, const char* what) {
-  if (result != VK_SUCCESS)
-    throw VkFailure(std::string("Vulkan call failed (VkResult ") + std::to_string(int(result)) +
-                    "): " + what);
+  if (result == VK_SUCCESS) return;
+  std::string message = std::string("Vulkan call failed: ") + result_name(result) + " (" +
+                        std::to_string(int(result)) + ")";
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+    message += ", out of GPU memory (try a smaller frame, fewer samples or fewer trees)";
+  if (result == VK_ERROR_DEVICE_LOST)
+    message += ", the GPU device was lost (driver crash, GPU reset or a hung submission)";
+  throw VkFailure(message + ": " + what);
 }
 
 bool validation_from_env() {
@@ -167,6 +195,13 @@ void create_context(Context& ctx, const ContextOptions& options) {
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
   extensions.insert(extensions.end(), options.instance_extensions.begin(), options.instance_extensions.end());
+  // Synchronization validation (VK_EXT_validation_features, provided by the layer itself).
+  const VkValidationFeatureEnableEXT sync_validation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT validation_features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  validation_features.enabledValidationFeatureCount = 1;
+  validation_features.pEnabledValidationFeatures = &sync_validation;
+  const bool sync = ctx.validation && options.synchronization_validation;
+  if (sync) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -178,6 +213,10 @@ void create_context(Context& ctx, const ContextOptions& options) {
 
   VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ici.pNext = ctx.validation ? &messenger_info : nullptr;  // also covers create/destroy
+  if (sync) {
+    validation_features.pNext = &messenger_info;
+    ici.pNext = &validation_features;
+  }
   ici.pApplicationInfo = &app;
   ici.enabledLayerCount = uint32_t(layers.size());
   ici.ppEnabledLayerNames = layers.data();

@@ -11,17 +11,22 @@
 
 namespace forest::vk {
 
-// Throws VkFailure (an internal error, exit code 1) when a Vulkan call fails.
+// Throws VkFailure (an internal error, exit code 1) when a Vulkan call fails; the message
+// names the VkResult and, for out-of-memory and device loss, what happened.
 struct VkFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 void check(VkResult result, const char* what);
+const char* result_name(VkResult result);
 #define VK_CHECK(call) ::forest::vk::check((call), #call)
 
 struct ContextOptions {
   // Khronos validation layer; every message of severity warning or error is counted.
   // Defaults to on when FOREST_VALIDATION=1 is set in the environment.
   bool validation = false;
+  // With validation: also the layer's synchronization validation (hazards between commands:
+  // missing barriers, read-after-write). Slower; tests turn it on for full frames.
+  bool synchronization_validation = false;
   // Device index or case-insensitive name substring; empty = FOREST_DEVICE, then discrete first.
   std::string device;
   // Windowed use (forest walk): instance extensions the window system needs and a function

@@ -12,11 +12,30 @@ uint32_t memory_type(const Context& ctx, uint32_t bits, VkMemoryPropertyFlags wa
     if ((bits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & want) == want) return i;
   throw VkFailure("no Vulkan memory type with the required properties");
 }
+
+// Refuses (VkFailure, exit code 1) a buffer the device cannot hold, before creating it:
+// beyond maxBufferSize or maxMemoryAllocationSize creation is invalid usage, and beyond the
+// largest heap the allocation fails anyway.
+void check_buffer_size(const Context& ctx, VkDeviceSize size) {
+  VkPhysicalDeviceMaintenance4Properties m4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES};
+  VkPhysicalDeviceMaintenance3Properties m3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  m3.pNext = &m4;
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  p2.pNext = &m3;
+  vkGetPhysicalDeviceProperties2(ctx.physical, &p2);
+  VkDeviceSize largest_heap = 0;
+  for (uint32_t i = 0; i < ctx.memory.memoryHeapCount; ++i) largest_heap = std::max(largest_heap, ctx.memory.memoryHeaps[i].size);
+  VkDeviceSize limit = std::min({m4.maxBufferSize, m3.maxMemoryAllocationSize, largest_heap});
+  if (size > limit)
+    throw VkFailure("out of GPU memory: a buffer of " + std::to_string(size >> 20) + " MiB exceeds the device's " +
+                    std::to_string(limit >> 20) + " MiB limit (try a smaller scene)");
+}
 }  // namespace
 
 Buffer create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use) {
   Buffer b;
   b.size = size;
+  check_buffer_size(ctx, size);
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size > 0 ? size : 16;  // zero-sized buffers are invalid; keep empty scenes legal
   bci.usage = usage;
@@ -31,7 +50,10 @@ Buffer create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
   VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   mai.allocationSize = req.size;
   mai.memoryTypeIndex = memory_type(ctx, req.memoryTypeBits, want);
-  VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &b.memory));
+  if (VkResult r = vkAllocateMemory(ctx.device, &mai, nullptr, &b.memory); r != VK_SUCCESS) {
+    vkDestroyBuffer(ctx.device, b.buffer, nullptr);  // reported, not leaked
+    check(r, "vkAllocateMemory (buffer)");
+  }
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
   if (use != MemoryUse::device) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;

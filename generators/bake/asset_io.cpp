@@ -34,6 +34,7 @@
 #include <sstream>
 
 #include "generators/common/input_error.h"
+#include "generators/common/limits.h"
 #include "generators/tree/mesher.h"
 
 namespace forest {
@@ -358,7 +359,9 @@ struct Reader {
     out.indices = indices(prim.indices, n, "indices");
     if (prim.material >= 0 && size_t(prim.material) < model.materials.size()) {
       const auto& f = model.materials[size_t(prim.material)].pbrMetallicRoughness.baseColorFactor;
-      if (f.size() == 4 && std::isfinite(f[0]) && std::isfinite(f[1]) && std::isfinite(f[2]))
+      // Finite and within float range: narrowing a larger double is undefined behavior.
+      auto ok = [](double x) { return std::isfinite(x) && std::abs(x) <= 1e6; };
+      if (f.size() == 4 && ok(f[0]) && ok(f[1]) && ok(f[2]))
         *color = glm::vec3(float(f[0]), float(f[1]), float(f[2]));
     }
     return out;
@@ -375,6 +378,11 @@ struct Reader {
       if (!v.IsNumber()) fail(std::string(kInstancing) + ": missing " + key);
       return v.GetNumberAsInt();
     };
+    // Refuse absurd leaf counts before reading (and allocating) them.
+    size_t declared = accessor(index("TRANSLATION"), "TRANSLATION").count;
+    if (declared > kMaxLeavesPerModel)
+      fail(std::to_string(declared) + " leaves, more than the limit of " + std::to_string(kMaxLeavesPerModel) +
+           " per model");
     std::vector<float> t = floats(index("TRANSLATION"), TINYGLTF_TYPE_VEC3, "TRANSLATION");
     std::vector<float> r = floats(index("ROTATION"), TINYGLTF_TYPE_VEC4, "ROTATION");
     std::vector<float> s = floats(index("SCALE"), TINYGLTF_TYPE_VEC3, "SCALE");
@@ -607,11 +615,21 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
   if (model.extras.IsObject() && model.extras.Has("forest")) {
     tree.meta = to_json(model.extras.Get("forest"));
     if (!tree.meta.is_object()) r.fail("extras.forest is not an object");
+    // Keys the tools read back from a loaded asset: a wrong type is bad input here, not an
+    // exception from deep inside a command later.
+    for (const char* key : {"species", "method", "priority"})
+      if (tree.meta.contains(key) && !tree.meta[key].is_string())
+        r.fail(std::string("extras.forest.") + key + " is not a string");
+    if (tree.meta.contains("seed") && !(tree.meta["seed"].is_number_integer() && tree.meta["seed"].get<int64_t>() >= 0))
+      r.fail("extras.forest.seed is not an integer >= 0");
+    if (tree.meta.contains("height") && !tree.meta["height"].is_number())
+      r.fail("extras.forest.height is not a number");
   }
   const nlohmann::json* bs = tree.meta.contains("bounding_sphere") ? &tree.meta["bounding_sphere"] : nullptr;
   bool have_sphere = bs && bs->is_array() && bs->size() == 4;
   if (have_sphere)
-    for (const auto& e : *bs) have_sphere = have_sphere && e.is_number() && std::isfinite(e.get<double>());
+    for (const auto& e : *bs)  // within float range: narrowing a larger double is undefined
+      have_sphere = have_sphere && e.is_number() && std::isfinite(e.get<double>()) && std::abs(e.get<double>()) <= 1e9;
   if (have_sphere && (*bs)[3].get<double>() >= 0.0)
     tree.bounding_sphere = glm::vec4(float((*bs)[0].get<double>()), float((*bs)[1].get<double>()),
                                      float((*bs)[2].get<double>()), float((*bs)[3].get<double>()));

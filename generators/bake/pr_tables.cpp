@@ -26,9 +26,9 @@ std::optional<PrTables> read_pr_tables(const nlohmann::json& meta, const std::st
     std::vector<float> v;
     for (const auto& x : j[key]) {
       if (!x.is_number()) fail(key, "expected numbers");
-      float f = x.get<float>();
+      double f = x.get<double>();  // range-checked before narrowing: a huge double is no float
       if (!std::isfinite(f) || f < lo || f > hi) fail(key, "value out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-      v.push_back(f);
+      v.push_back(float(f));
     }
     return v;
   };
@@ -40,9 +40,18 @@ std::optional<PrTables> read_pr_tables(const nlohmann::json& meta, const std::st
   t.d = floats("d", D_SAMPLES, 0.0f, 1.0f);
   t.lambda_opt = floats("lambda_opt", D_SAMPLES, 0.0f, 1.0f);
   t.lambda_cook = floats("lambda_cook", D_SAMPLES, 0.0f, 1.0f);
-  t.priority = j.value("priority", "");
-  t.views = j.value("views", 0);
-  t.resolution = j.value("resolution", 0);
+  if (j.contains("priority")) {
+    if (!j["priority"].is_string()) fail("priority", "expected a string");
+    t.priority = j["priority"].get<std::string>();
+  }
+  auto count = [&](const char* key) {
+    if (!j.contains(key)) return 0;
+    if (!j[key].is_number_integer() || j[key].get<int64_t>() < 0 || j[key].get<int64_t>() > 1'000'000)
+      fail(key, "expected an integer in [0, 1000000]");
+    return int(j[key].get<int64_t>());
+  };
+  t.views = count("views");
+  t.resolution = count("resolution");
   return t;
 }
 

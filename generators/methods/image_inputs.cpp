@@ -3,6 +3,7 @@
 #include "generators/methods/strokes_io.h"
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -160,6 +161,17 @@ Mask load_mask(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) fail(name, "", "mask file not found");
+  {
+    // Only PNG and OpenEXR, by signature: OpenImageIO would otherwise hand a file that fails
+    // as PNG to every other reader it has (TIFF, DPX, ...), a needless attack surface.
+    static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
+    unsigned char head[8] = {};
+    std::ifstream probe(file, std::ios::binary);
+    probe.read(reinterpret_cast<char*>(head), 8);
+    if (!(probe.gcount() == 8 && (std::memcmp(head, kPng, 8) == 0 || std::memcmp(head, kExr, 4) == 0)))
+      fail(name, "", "not a PNG or OpenEXR image");
+  }
   auto in = OIIO::ImageInput::open(name);
   if (!in) fail(name, "", "not a readable image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
@@ -168,19 +180,20 @@ Mask load_mask(const std::filesystem::path& file) {
     fail(name, "", "unsupported mask size " + std::to_string(spec.width) + "x" +
                        std::to_string(spec.height) + " (1..8192 per side)");
   const int nc = spec.nchannels;
-  std::vector<float> pixels(size_t(spec.width) * size_t(spec.height) * size_t(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, pixels.data()))
-    fail(name, "", "corrupt image: " + in->geterror());
   int channel = spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel
                 : (nc == 2 || nc == 4)                               ? nc - 1
                                                                      : 0;
+  // Only the mask channel is read: at most 8192^2 floats (256 MB), whatever the channel count.
+  std::vector<float> pixels(size_t(spec.width) * size_t(spec.height));
+  if (!in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::FLOAT, pixels.data()))
+    fail(name, "", "corrupt image: " + in->geterror());
   Mask m;
   m.width = spec.width;
   m.height = spec.height;
   m.source = name;
   m.alpha.resize(size_t(m.width) * size_t(m.height));
   for (size_t i = 0; i < m.alpha.size(); ++i) {
-    float a = pixels[i * size_t(nc) + size_t(channel)];
+    float a = pixels[i];
     if (!std::isfinite(a))
       fail(name, "", "pixel (" + std::to_string(i % size_t(m.width)) + ", " +
                          std::to_string(i / size_t(m.width)) + ") is not a finite number");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "generators/common/limits.h"
 #include "generators/tree/mesh_lod.h"
 
 namespace forest {
@@ -42,6 +43,10 @@ SkeletonCapture::~SkeletonCapture() { g_skeleton_sink = previous; }
 
 TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
                            const MesherParams& mesher) {
+  if (graph.leaves.size() > kMaxLeavesPerModel)
+    throw InputError(d.species, 0, "leaf_count",
+                     std::to_string(graph.leaves.size()) + " leaves, more than the limit of " +
+                         std::to_string(kMaxLeavesPerModel) + " per model");
   if (g_skeleton_sink) *g_skeleton_sink = graph;
   TreeModel model;
   model.branches = mesh_branches(graph, mesher);

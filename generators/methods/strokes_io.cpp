@@ -55,6 +55,15 @@ void validate(Drawing& d) {
       if (!std::isfinite(z) || std::abs(z) > kMaxDrawingCoordinate)
         stroke_error(d, i, "depth", "not a finite number within +-1e4");
     if (s.level < 0 || s.level > 16) stroke_error(d, i, "level", "must be in [0, 16]");
+    // SVG attributes arrive as raw bytes; they end up in JSON (drawing_to_json, model
+    // metadata), which only holds UTF-8 text.
+    for (auto [key, text] : {std::pair<const char*, const std::string*>{"id", &s.id}, {"role", &s.role}, {"parent", &s.parent}}) {
+      try {
+        (void)nlohmann::json(*text).dump();
+      } catch (const nlohmann::json::type_error&) {
+        stroke_error(d, i, key, "not valid UTF-8 text");
+      }
+    }
   }
   stroke_parents(d);  // parent errors now, not later in a method
 }

@@ -120,6 +120,7 @@ TEST_F(CliTest, BadSceneFilesFailWithOneLineNamingFileLineKey) {
       {"nan", scene_with("[placement]\ncount = 3\nmin_spacing = nan\n"), 14, "placement.min_spacing"},
       {"inf", "[camera]\nfov = inf\n", 2, "camera.fov"},
       {"absurd", "[render]\nwidth = 100000\n", 2, "render.width"},
+      {"absurd_tree_count", scene_with("[placement]\ncount = 100000000\n"), 13, "placement.count"},
       {"bad_vec", "[camera]\nposition = [1, 2]\n", 2, "camera.position"},
       {"missing_preset", "[[species]]\npreset = \"nope.toml\"\n", 2, "species[0].preset"},
       {"bad_tree_index", scene_with("[[tree]]\nspecies = 4\nx = 0\nz = 0\n"), 13, "tree[0].species"},
@@ -139,6 +140,18 @@ TEST_F(CliTest, BadSceneFilesFailWithOneLineNamingFileLineKey) {
     EXPECT_EQ(files, std::vector<std::string>{std::string(c.name) + ".toml"});
     fs::remove(scene);
   }
+}
+
+TEST_F(CliTest, AbsurdLeafCountInModelExitsTwo) {
+  // A .glb that declares 10^7 leaves (and stores 4): refused before anything is allocated.
+  const std::string glb = kSource + "/tests/fuzz/corpus/glb/absurd_leaf_count.glb";
+  fs::path scene = write("s.toml", "[[species]]\nmodel = \"" + glb + "\"\n[[tree]]\nx = 0\nz = 0\n");
+  Result r = run("render '" + scene.string() + "' --out '" + (dir_ / "frame.png").string() + "'");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(glb + ": "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("10000000 leaves, more than the limit"), std::string::npos) << r.err;
+  EXPECT_EQ(listing(), std::vector<std::string>{"s.toml"});
 }
 
 TEST_F(CliTest, MissingSceneFile) {
