@@ -6,7 +6,7 @@
 // 2. The same PR measurement on --old-model (default scenes/species/broadleaf.toml) with the
 //    original path (one submit per render, branches redrawn, every s on the grid) and with
 //    the current one: the ratio, and how far the tables moved.
-// 3. Table 7.4: for every --compare model (default broadleaf, particle_flow_oak, mig_a_hero)
+// 3. Table 7.4: for every --compare model (default broadleaf, particle_flow_oak_hero, mig_a_hero)
 //    and every priority order, the detail λ needed to match the quality of Cook et al.
 //    (random order, s = 1/λ, at λ_Cook(d) = (1 − d)²) with that order's s_opt, along
 //    d = 0.1 … 0.7: geometry saved = 1 − λ/λ_Cook. "random" is the paper's "Opt PR" column.
@@ -131,7 +131,7 @@ double sample_quality(const PrMeasurement& pm, float l, float s) {
 void table_7_4(vk::Context& ctx, const Options& o, const std::string& device) {
   std::vector<std::string> models = o.compare;
   if (models.empty())
-    for (const char* n : {"broadleaf", "particle_flow_oak", "mig_a_hero"})
+    for (const char* n : {"broadleaf", "particle_flow_oak_hero", "mig_a_hero"})
       models.push_back(kSource + "/scenes/species/" + n + ".toml");
   std::vector<OrderRow> rows;
   std::vector<int> ds;  // d_sample indices used: d = 0.1 … 0.9, uniform

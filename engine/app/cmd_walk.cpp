@@ -5,6 +5,7 @@
 #include <GLFW/glfw3.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -17,7 +18,9 @@
 #include "engine/render/renderer.h"
 #include "engine/scene/fly_camera.h"
 #include "engine/scene/scene.h"
+#include "engine/scene/camera_path.h"
 #include "engine/vk/swapchain.h"
+#include "generators/common/input_error.h"
 
 namespace forest::app {
 
@@ -26,13 +29,19 @@ namespace {
 constexpr double kScriptedStep = 1.0 / 30.0;  // seconds per frame with --frames: same run, same frames
 constexpr uint32_t kMaxOverlayBytes = 2048 * 512 * 4;
 
-// Camera path playback. Scenes gain camera paths in engine/scene/camera_path.h
-// (camera_at(path, t)), written in parallel; until that is merged no scene has a path and
-// [P] says so. Connect it here: `at` returns the camera `seconds` into the path.
+// Camera path playback ([P]): the scene's first [[path]], looping over its duration.
 struct CameraPlayback {
   std::function<CameraDesc(double seconds)> at;  // empty: the scene has no camera path
 };
-CameraPlayback scene_camera_playback(const Scene&) { return {}; }
+CameraPlayback scene_camera_playback(const Scene& scene) {
+  if (scene.desc.paths.empty()) return {};
+  const CameraPath* path = &scene.desc.paths.front();
+  const CameraDesc base = scene.desc.camera;
+  const double duration = std::max(double(path_duration(*path)), 1e-3);
+  return {[path, base, duration](double seconds) {
+    return camera_at(*path, path->keys.front().time + float(std::fmod(seconds, duration)), base);
+  }};
+}
 
 // What the GLFW callbacks change; read once per frame by the loop.
 struct WalkState {
@@ -122,8 +131,7 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
       format("leaves %u  mean lambda %.3f", st.leaves_drawn, st.mean_lambda),
       format("[1-3] prune %s  [L] %s  [F] wire %s", prune_name(f.prune_mode), f.lambda_view ? "lambda" : "shaded",
              f.wireframe ? "on" : "off"),
-      // Occlusion feedback is written in parallel; the renderer ignores the flag until merged.
-      format("[O] occlusion %s (n/a)  [P] path %s", f.occlusion ? "on" : "off",
+      format("[O] occlusion %s (%u culled)  [P] path %s", f.occlusion ? "on" : "off", st.occluded_instances,
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),
       format("%.0f %.0f %.0f  %.1f m/s  [C] shot", cam.position.x, cam.position.y, cam.position.z, cam.speed),
   };
@@ -186,9 +194,15 @@ int run_walk(const WalkArgs& args) {
   std::filesystem::path screenshot_path = args.screenshot;
   if (!args.screenshot.empty()) check_output_path(screenshot_path, "--screenshot");
   SceneDesc desc = load_scene_file(args.scene);
+  if (args.play && desc.paths.empty()) throw InputError(args.scene, 0, "--play", "the scene has no [[path]] to play");
   if (args.width) desc.width = *args.width;
   if (args.height) desc.height = *args.height;
-  Scene scene = build_scene(desc);
+  // Presets come generated and baked from the species cache, as in `forest render`, so the
+  // opt mode ([3]) has its tables and a still frame matches `forest render` exactly.
+  SceneBuildOptions build;
+  build.use_cache = true;
+  build.log = [](const std::string& line) { std::printf("%s\n", line.c_str()), std::fflush(stdout); };
+  Scene scene = build_scene(desc, build);
   if (scene.placement_shortfall > 0)
     std::fprintf(stderr, "forest: %s: placement: only %u of %u trees found room (min_spacing / radius / max_slope)\n",
                  args.scene.c_str(), desc.placement.count - scene.placement_shortfall, desc.placement.count);
@@ -233,6 +247,7 @@ int run_walk(const WalkArgs& args) {
     state.wireframe_available = renderer.has_wireframe();
     CameraPlayback playback = scene_camera_playback(scene);
     state.playback_available = bool(playback.at);
+    state.playing = args.play;
 
     PresentTargets targets{ctx, {}, {}};
     vk::Swapchain& swapchain = targets.swapchain;

@@ -118,6 +118,7 @@ struct WalkArgs {
   std::optional<uint32_t> frames;         // scripted: quit after N frames, fixed 1/30 s steps
   std::string screenshot;                 // with --frames: the last frame; else the [C] key's file
   bool fly = false;                       // scripted camera move: forward while turning
+  bool play = false;                      // start playing the scene's first camera path
   std::optional<uint32_t> resize_at;      // scripted window resize at this frame
   bool no_hud = false;
   bool validate = false;

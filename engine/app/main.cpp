@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
                               ->check(CLI::Range(1, 1000000));
   walk_cmd->add_option("--screenshot", walk.screenshot, "PNG of the last frame with --frames; else where [C] writes");
   walk_cmd->add_flag("--fly", walk.fly, "Scripted camera move: fly forward while turning");
+  walk_cmd->add_flag("--play", walk.play, "Start playing the scene's camera path (as if [P] was pressed)");
   auto* walk_resize_opt = walk_cmd->add_option("--resize-at", walk_resize_at, "Scripted: resize the window at this frame")
                               ->check(CLI::Range(0, 1000000));
   walk_cmd->add_flag("--no-hud", walk.no_hud, "Start with the HUD hidden ([H] toggles)");

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "engine/render/image_io.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -74,10 +76,13 @@ std::string replace_after(std::string s, const std::string& after, const std::st
 
 TEST_F(CliImageInputs, EmptyMask) {
   std::string views = oak_views();  // 128 x 128 masks
-  // An all-background grey image of the same size (PGM: OpenImageIO reads any format).
-  write("empty.pgm", "P5\n128 128\n255\n" + std::string(128 * 128, '\0'));
-  write("views.json", replace_after(views, "\"views\"", "view1.png", "empty.pgm"));
-  expect_one_line_error("method = \"particle-flow\"\nviews = \"views.json\"\n", "empty.pgm", "mask is empty");
+  // An all-background image of the same size (masks are PNG or OpenEXR).
+  forest::FrameImage empty;
+  empty.width = empty.height = 128;
+  empty.rgba.assign(128 * 128 * 4, 0);
+  forest::write_image(empty, dir_ / "empty.png");
+  write("views.json", replace_after(views, "\"views\"", "view1.png", "empty.png"));
+  expect_one_line_error("method = \"particle-flow\"\nviews = \"views.json\"\n", "empty.png", "mask is empty");
 }
 
 TEST_F(CliImageInputs, CameraSizeDiffersFromMask) {

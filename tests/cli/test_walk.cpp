@@ -146,3 +146,33 @@ TEST_F(WalkTest, NoDisplayIsOneClearLine) {
   EXPECT_EQ(std::count(err_.begin(), err_.end(), '\n'), 1) << err_;
   EXPECT_FALSE(fs::exists(dir_ / "x.png"));
 }
+
+// --play starts the scene's camera path at once: after N scripted frames (1/30 s each) the
+// window shows what `forest render --path NAME --time N/30` writes, up to the last bits of
+// the accumulated time. A scene without a path is an input error before any window opens.
+TEST_F(WalkTest, PlayFollowsTheCameraPathLikeRender) {
+  fs::path scene = dir_ / "path.toml";
+  std::ofstream(scene) << light_scene("shaded")
+                       << "[[path]]\nname = \"orbit\"\nfps = 30\n"
+                          "[[path.key]]\ntime = 0\nposition = [0, 6, -30]\ntarget = [0, 9, 0]\n"
+                          "[[path.key]]\ntime = 2\nposition = [30, 8, 0]\ntarget = [0, 9, 0]\n";
+  ASSERT_EQ(run("render '" + scene.string() + "' --path orbit --time 0.5 --out '" + (dir_ / "r.png").string() + "'",
+                false),
+            0)
+      << err_;
+  ASSERT_EQ(run("walk '" + scene.string() + "' --play --frames 15 --no-hud --screenshot '" +
+                (dir_ / "w.png").string() + "' --validate"),
+            0)
+      << err_;
+  forest::FrameImage r = forest::read_image(dir_ / "r.png"), w = forest::read_image(dir_ / "w.png");
+  ASSERT_EQ(w.rgba.size(), r.rgba.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < w.rgba.size(); i += 4)
+    differ += std::abs(int(w.rgba[i]) - int(r.rgba[i])) + std::abs(int(w.rgba[i + 1]) - int(r.rgba[i + 1])) > 24;
+  EXPECT_LT(differ, w.rgba.size() / 4 / 100) << "more than 1 % of the pixels differ";
+
+  fs::path no_path = dir_ / "nopath.toml";
+  std::ofstream(no_path) << light_scene("shaded");
+  EXPECT_EQ(run("walk '" + no_path.string() + "' --play --frames 2", false), 2);
+  EXPECT_NE(err_.find("--play"), std::string::npos) << err_;
+}

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -346,4 +347,17 @@ TEST(Scene, FullDetailSizeSumsEveryInstance) {
   FullDetailSize f = full_detail_size(s);
   EXPECT_EQ(f.vertices, 2u * (4 + 3 * 4) + 10u);
   EXPECT_EQ(f.triangles, 2u * (2 + 3 * 2) + 9u);
+}
+
+// Issue 6: the benchmark forest has 5000 trees of at least 8 models and more than a billion
+// distinct vertices at full detail (generated in-process here, without baking).
+TEST(Scene, Forest5000IsOverABillionVerticesAtFullDetail) {
+  SceneDesc desc = load_scene_file(std::string(FOREST_SOURCE_DIR) + "/scenes/forest5000.toml");
+  Scene scene = build_scene(desc);
+  EXPECT_GE(scene.models.size(), 8u);
+  EXPECT_EQ(scene.instances.size(), 5000u);
+  FullDetailSize full = full_detail_size(scene);
+  std::printf("forest5000 at full detail: %llu vertices, %llu triangles\n", (unsigned long long)full.vertices,
+              (unsigned long long)full.triangles);
+  EXPECT_GE(full.vertices, 1'000'000'000ull);
 }
