@@ -38,6 +38,12 @@ int run_render(const RenderArgs& args) {
   SceneDesc desc = load_scene_file(args.scene);
   if (args.width) desc.width = *args.width;
   if (args.height) desc.height = *args.height;
+  if (!args.mode.empty())
+    desc.prune_mode = args.mode == "cook" ? PRUNE_COOK : args.mode == "opt" ? PRUNE_OPT : PRUNE_FULL;
+  if (!args.view.empty()) {
+    desc.lambda_view = args.view == "lambda";
+    desc.mask_view = args.view == "mask";
+  }
   CameraDesc camera = desc.camera;
   if (!args.path.empty()) {
     const CameraPath* path = find_path(desc, args.path);

@@ -92,6 +92,8 @@ struct RenderArgs {
   std::string device;
   std::optional<uint32_t> width, height;
   std::optional<bool> occlusion;  // --occlusion on|off, overrides [render].occlusion
+  std::string mode;               // --mode full|cook|opt, overrides [render].mode
+  std::string view;               // --view shaded|lambda|mask, overrides [render].view
   bool stats = false;
   bool validate = false;
   std::string path;              // camera path name ([[path]] name)

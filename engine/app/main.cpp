@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
   auto* occlusion_opt = render_cmd->add_option("--occlusion", occlusion,
                                                "Depth-buffer occlusion feedback (overrides [render].occlusion)")
                             ->check(CLI::IsMember({"on", "off"}));
+  render_cmd->add_option("--mode", render.mode, "Prune mode (overrides [render].mode)")
+      ->check(CLI::IsMember({"full", "cook", "opt"}));
+  render_cmd->add_option("--view", render.view, "shaded, lambda (trees by detail level) or mask (coverage for forest compare)")
+      ->check(CLI::IsMember({"shaded", "lambda", "mask"}));
   render_cmd->add_flag("--stats", render.stats, "Print GPU statistics and timings");
   uint32_t render_frame = 0;
   double render_time = 0.0;
