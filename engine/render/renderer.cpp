@@ -265,6 +265,10 @@ void Renderer::create_pipelines() {
   leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
   leaves.alpha_to_coverage = samples_ > VK_SAMPLE_COUNT_1_BIT;
   leaves.fragment_constants = {1u, leaves.alpha_to_coverage ? 1u : 0u};  // LEAF, ALPHA_TO_COVERAGE
+  // The leaf's (sharpened) alpha is coverage, not opacity: written to the attachment it made
+  // the resolved frame translucent at every leaf edge, and a PNG viewer showed its page
+  // background (white) through the crowns. The sky underneath already wrote alpha 1.
+  leaves.write_alpha = false;
   leaves_pipeline_ = vk::create_graphics_pipeline(ctx_, layout_, leaves);
   if (ctx_.fill_mode_non_solid) {  // wireframe view: same shaders, edges only, no leaf alpha test
     terrain.polygon_mode = branches.polygon_mode = VK_POLYGON_MODE_LINE;
