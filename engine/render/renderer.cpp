@@ -413,7 +413,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
   color.imageView = color_.view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   color.loadOp = mask ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // else the sky covers all
-  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // opaque: leaves write no alpha (see leaves.write_alpha)
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   if (color_msaa_.image) {  // render multisampled, resolve (average) into the single-sample image
     color.imageView = color_msaa_.view;
