@@ -1,5 +1,7 @@
 // CPU preparation of the leaf texture array: every model's leaf texture resampled to one
-// square size with its full mip chain (coverage-preserving box filter), layer-major.
+// square size with its full mip chain, layer-major: a box filter (color in linear light,
+// weighted by alpha) whose stored levels have alpha rescaled to keep the alpha-test coverage
+// of the full-resolution level (I. Castaño, "Computing alpha mipmaps", 2010).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -18,7 +20,14 @@ TextureArrayData build_leaf_texture_array(const std::vector<const Image8*>& imag
 
 // Bilinear resample of an RGBA8 image to size x size.
 Image8 resample(const Image8& image, uint32_t size);
-// Next mip level (half size, 2x2 box filter).
+// Next mip level (half size, 2x2 box filter; RGB averaged in linear light weighted by alpha).
 Image8 downsample(const Image8& image);
+
+// Fraction of the image whose alpha × scale passes the 0.5 cutoff (bilinear, 4 x 4 samples
+// per texel).
+float alpha_coverage(const Image8& image, float scale);
+// The image with alpha scaled so that alpha_coverage(result, 1) is as close to `coverage` as
+// a uniform scale allows.
+Image8 preserve_alpha_coverage(const Image8& image, float coverage);
 
 }  // namespace forest

@@ -265,6 +265,10 @@ void Renderer::create_pipelines() {
   leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
   leaves.alpha_to_coverage = samples_ > VK_SAMPLE_COUNT_1_BIT;
   leaves.fragment_constants = {1u, leaves.alpha_to_coverage ? 1u : 0u};  // LEAF, ALPHA_TO_COVERAGE
+  // The leaf's (sharpened) alpha is coverage, not opacity: written to the attachment it made
+  // the resolved frame translucent at every leaf edge, and a PNG viewer showed its page
+  // background (white) through the crowns. The sky underneath already wrote alpha 1.
+  leaves.write_alpha = false;
   leaves_pipeline_ = vk::create_graphics_pipeline(ctx_, layout_, leaves);
   if (ctx_.fill_mode_non_solid) {  // wireframe view: same shaders, edges only, no leaf alpha test
     terrain.polygon_mode = branches.polygon_mode = VK_POLYGON_MODE_LINE;
@@ -409,7 +413,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
   color.imageView = color_.view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   color.loadOp = mask ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // else the sky covers all
-  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // opaque: leaves write no alpha (see leaves.write_alpha)
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   if (color_msaa_.image) {  // render multisampled, resolve (average) into the single-sample image
     color.imageView = color_msaa_.view;

@@ -63,8 +63,8 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   depth.depthWriteEnable = desc.depth_write;
   depth.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z: 1 near, 0 far
   VkPipelineColorBlendAttachmentState blend_attachment{};
-  blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                    VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                                    (desc.write_alpha ? VkColorComponentFlags(VK_COLOR_COMPONENT_A_BIT) : 0u);
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = 1;
   blend.pAttachments = &blend_attachment;

@@ -26,6 +26,9 @@ struct GraphicsPipelineDesc {
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   bool alpha_to_coverage = false;
+  // false: the pipeline leaves the color attachment's alpha as it is (its fragment alpha only
+  // drives alpha-to-coverage, which the write mask does not affect).
+  bool write_alpha = true;
   VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;  // LINE needs Context::fill_mode_non_solid
   // Fragment-stage specialization constants, constant_id = index (shader variants).
   std::vector<uint32_t> fragment_constants;

@@ -178,7 +178,10 @@ TEST_F(OcclusionTest, TreeHiddenBehindARowIsPruned) {
   EXPECT_GT(frames_to_prune, 0) << "hidden tree still at " << r.instance_states()[hidden].occlusion;
   EXPECT_LE(frames_to_prune, 5);
   std::vector<gpu::InstanceState> st = r.instance_states();
-  EXPECT_LE(st[hidden].visible, 0.1f);
+  // 0.15, not 0.1: since the leaf mips keep the alpha-tested coverage (leaf_textures.cpp), the
+  // row's distant leaves no longer grow into solid cards, and one of the hull samples of the
+  // hidden tree (0.111) sees through a gap.
+  EXPECT_LE(st[hidden].visible, 0.15f);
   for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.95f) << "front-row tree " << i;
   EXPECT_GT(last.leaves_saved, uint32_t(m.leaves.size()) * 8 / 10);
   EXPECT_LT(last.leaves_drawn, first.leaves_drawn);
@@ -210,7 +213,10 @@ TEST_F(OcclusionTest, HiddenPruningIsNotVisible) {
   for (int f = 0; f < 5; ++f) with = r.render(s.desc.camera, nullptr, occl);
   EXPECT_LT(with.leaves_drawn, without.leaves_drawn * 9 / 10) << "occlusion saved too little to matter";
   PrResult pr = r.compare_with_reference(s.desc.camera, occl);
-  EXPECT_GE(pr.quality(), 0.99) << "P " << pr.precision() << " R " << pr.recall();
+  // 0.985: with coverage-preserving leaf mips the row's crowns show their real gaps at this
+  // distance (Q was 0.9876 when they were measured; 0.99 held only while distant leaves
+  // filled their whole card).
+  EXPECT_GE(pr.quality(), 0.985) << "P " << pr.precision() << " R " << pr.recall();
 }
 
 // After a camera cut every tree counts as visible: the first frame of the new view is

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/render/leaf_textures.h"
+#include "generators/tree/leaf_texture.h"
 
 using namespace forest;
 
@@ -54,4 +55,65 @@ TEST(LeafTextures, ResampleKeepsSameSizeExact) {
   Image8 up = resample(c, 32);
   EXPECT_EQ(up.width, 32u);
   EXPECT_EQ(up.rgba.size(), 32u * 32u * 4u);
+}
+
+TEST(LeafTextures, MipsKeepTheAlphaTestedCoverage) {
+  // The needle spray: thin needles whose box-filtered alpha falls under the 0.5 cutoff within
+  // a few levels (the conifers lost their needles at distance).
+  Image8 needles = make_leaf_texture(LeafShape::needles, 128);
+  TextureArrayData d = build_leaf_texture_array({&needles}, 128);
+  const float full = alpha_coverage(needles, 1.0f);
+  ASSERT_GT(full, 0.2f);
+  size_t offset = 0;
+  for (uint32_t mip = 0, s = 128; mip < d.mips; ++mip, s /= 2) {
+    Image8 level;
+    level.width = level.height = s;
+    level.rgba.assign(d.texels.begin() + long(offset), d.texels.begin() + long(offset + size_t(s) * s * 4));
+    offset += size_t(s) * s * 4;
+    if (s >= 4) {
+      EXPECT_NEAR(alpha_coverage(level, 1.0f), full, 0.05f) << "mip " << mip << " (" << s << " px)";
+    }
+  }
+}
+
+TEST(LeafTextures, CoverageScaleOnlyTouchesAlpha) {
+  Image8 ramp = checker(16);  // RGB (200, 100, 50); alpha rising from 0 to 200 along x
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x) ramp.rgba[(size_t(y) * 16 + x) * 4 + 3] = uint8_t(x * 200 / 15);
+  const float before = alpha_coverage(ramp, 1.0f);
+  EXPECT_NEAR(before, 0.36f, 0.05f);
+  for (float target : {0.2f, 0.5f, 0.7f}) {
+    Image8 kept = preserve_alpha_coverage(ramp, target);
+    EXPECT_NEAR(alpha_coverage(kept, 1.0f), target, 0.03f);
+    for (size_t i = 0; i < kept.rgba.size(); i += 4)
+      for (size_t ch = 0; ch < 3; ++ch) ASSERT_EQ(kept.rgba[i + ch], ramp.rgba[i + ch]);
+  }
+}
+
+TEST(LeafTextures, MipColorAveragedInLinearLight) {
+  // Opaque black and white texels: the sRGB texture's half-gray is 188, not 128 (averaging
+  // the encoded bytes darkens every level); transparent texels of any RGB stay out.
+  Image8 img;
+  img.width = img.height = 4;
+  img.rgba.resize(4 * 4 * 4);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 4; ++x) {
+      uint8_t* p = &img.rgba[(size_t(y) * 4 + x) * 4];
+      uint8_t v = (x + y) % 2 ? 255 : 0;
+      p[0] = p[1] = p[2] = v, p[3] = 255;
+    }
+  Image8 half = downsample(img);
+  for (size_t i = 0; i < half.rgba.size(); i += 4) EXPECT_NEAR(half.rgba[i], 188, 1);
+  // Green opaque texels beside magenta transparent ones: the level stays green.
+  for (size_t i = 0; i < img.rgba.size(); i += 4) {
+    bool on = (i / 4) % 2 == 0;
+    img.rgba[i + 0] = on ? 40 : 255, img.rgba[i + 1] = on ? 120 : 0, img.rgba[i + 2] = on ? 60 : 255;
+    img.rgba[i + 3] = on ? 255 : 0;
+  }
+  half = downsample(img);
+  for (size_t i = 0; i < half.rgba.size(); i += 4) {
+    EXPECT_NEAR(half.rgba[i + 0], 40, 4);
+    EXPECT_NEAR(half.rgba[i + 1], 120, 2);
+    EXPECT_NEAR(half.rgba[i + 2], 60, 4);
+  }
 }

@@ -1,0 +1,133 @@
+// Leaves look the same near and far: a wall of needle cards (the conifer presets' texture)
+// rendered at 8x the texel footprint (as at 8x the distance) keeps its coverage and color,
+// with and without alpha-to-coverage, and the rendered frame stays opaque.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/render/leaf_textures.h"
+#include "engine/render/renderer.h"
+#include "engine/scene/scene.h"
+#include "generators/tree/leaf_texture.h"
+#include "generators/tree/mesher.h"
+
+using namespace forest;
+
+namespace {
+
+const std::string kSource = FOREST_SOURCE_DIR;
+
+// A "tree" that is a wall of needle cards in the plane z = 0, tiled edge to edge so that the
+// wall covers exactly what the texture covers; the bark is one small triangle behind it.
+TreeModel leaf_wall(Image8 texture) {
+  TreeModel m;
+  m.leaf_card = make_leaf_card(LeafShape::needles);
+  m.leaf_texture = std::move(texture);
+  m.leaf_color = {0.04f, 0.14f, 0.07f};  // picea_abies
+  const float w = leaf_card_aspect(LeafShape::needles);
+  const int columns = 16, rows = 8;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) {
+      LeafPlacement l;
+      l.position = {(float(c) - float(columns - 1) * 0.5f) * w, 2.0f + float(r), 0.0f};
+      m.leaves.push_back(l);
+    }
+  m.branches.vertices = {{{0, 5, 1}, {0, 0, -1}, {}}, {{0.1f, 5, 1}, {0, 0, -1}, {}}, {{0, 5.1f, 1}, {0, 0, -1}, {}}};
+  m.branches.indices = {0, 1, 2};
+  m.bounding_sphere = glm::vec4(0.0f, 6.0f, 0.0f, 7.0f);
+  return m;
+}
+
+struct Measure {
+  glm::vec3 mean{0.0f};  // linear RGB over the central box, which only the wall covers
+  bool opaque = true;    // every pixel of the frame has alpha 255
+};
+
+float linear(uint8_t v) {
+  float c = float(v) / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+class LeafAppearance : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    vk::ContextOptions options;
+    options.validation = true;
+    vk::create_context(ctx_, options);
+  }
+  void TearDown() override {
+    vk::destroy_context(ctx_);
+    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
+  }
+  Measure render(const TreeModel& model, uint32_t size, uint32_t samples) {
+    Scene s;
+    s.desc = parse_scene_text(R"(
+[render]
+mode = "full"
+[camera]
+position = [0, 6, -8]
+target = [0, 6, 0]
+fov = 40
+[terrain]
+size = 100
+resolution = 4
+height = 0.0
+)",
+                              "wall.toml", kSource + "/scenes");
+    s.desc.trees = {TreeDesc{}};
+    s.terrain = make_terrain(s.desc.terrain);
+    s.models.push_back(model);
+    s.instances = place_trees(s.desc, s.terrain);
+    Renderer renderer(ctx_, s, size, size, samples);
+    FrameImage image;
+    renderer.render(s.desc.camera, &image);
+    Measure m;
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size; ++x) m.opaque = m.opaque && image.pixel(x, y)[3] == 255;
+    // The central half of the frame sees +-1.46 m around the wall's middle: wall only.
+    size_t n = 0;
+    for (uint32_t y = size / 4; y < 3 * size / 4; ++y)
+      for (uint32_t x = size / 4; x < 3 * size / 4; ++x, ++n)
+        for (int c = 0; c < 3; ++c) m.mean[c] += linear(image.pixel(x, y)[c]);
+    m.mean /= float(n);
+    return m;
+  }
+  vk::Context ctx_;
+};
+
+}  // namespace
+
+TEST_F(LeafAppearance, NeedleCoverageAndColorKeptAtDistance) {
+  const Image8 needles = make_leaf_texture(LeafShape::needles);
+  Image8 solid = needles;  // same RGB, every texel opaque: the leaf color alone
+  for (size_t i = 3; i < solid.rgba.size(); i += 4) solid.rgba[i] = 255;
+  TreeModel textured = leaf_wall(needles), opaque = leaf_wall(solid), bare = leaf_wall(needles);
+  bare.leaves.clear();
+  const float texture_coverage = alpha_coverage(needles, 1.0f);
+  ASSERT_GT(texture_coverage, 0.2f);
+  ASSERT_LT(texture_coverage, 0.8f);
+
+  for (uint32_t samples : {1u, 4u}) {
+    float coverage[2];
+    glm::vec3 leaf[2];
+    const uint32_t sizes[2] = {256, 24};  // a card spans ~44 px, then ~4 px
+    for (int i = 0; i < 2; ++i) {
+      Measure wall = render(textured, sizes[i], samples), lit = render(opaque, sizes[i], samples),
+              behind = render(bare, sizes[i], samples);
+      EXPECT_TRUE(wall.opaque) << "leaf coverage leaked into the frame's alpha (" << sizes[i] << " px, " << samples
+                               << " samples)";
+      // The mean over the box mixes leaf and background by the covered fraction.
+      glm::vec3 d = behind.mean - lit.mean;
+      coverage[i] = glm::dot(behind.mean - wall.mean, d) / glm::dot(d, d);
+      leaf[i] = lit.mean;
+    }
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    EXPECT_NEAR(coverage[0], texture_coverage, 0.08f) << "near";
+    EXPECT_NEAR(coverage[1], coverage[0], 0.08f) << "far: alpha-tested needles thinned out by the mips";
+    // The leaf's color (its model color x per-leaf color x lit texture RGB) does not change with
+    // the mip level: within 10% per channel, and green stays the dominant channel.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(leaf[1][c], leaf[0][c], 0.1f * leaf[0][c] + 1e-3f) << "channel " << c;
+    EXPECT_GT(leaf[0].g, 1.5f * leaf[0].r);
+    EXPECT_GT(leaf[0].g, 1.5f * leaf[0].b);
+  }
+}
