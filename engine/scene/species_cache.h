@@ -16,7 +16,7 @@ struct Context;
 namespace forest {
 
 // Bumped whenever a generator or the bake changes what a spec produces.
-constexpr int kSpeciesCacheVersion = 1;
+constexpr int kSpeciesCacheVersion = 2;  // 2: coverage-preserving leaf mips (tables re-measured)
 
 // $FOREST_CACHE, else $XDG_CACHE_HOME/forest, else $HOME/.cache/forest, else build-less
 // fallback ".forest-cache" in the current folder.
