@@ -133,7 +133,9 @@ TEST_F(CliTest, BadSceneFilesFailWithOneLineNamingFileLineKey) {
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
-    if (c.line > 0) EXPECT_NE(r.err.find(":" + std::to_string(c.line) + ":"), std::string::npos) << r.err;
+    if (c.line > 0) {
+      EXPECT_NE(r.err.find(":" + std::to_string(c.line) + ":"), std::string::npos) << r.err;
+    }
     EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "frame.png"));
     std::vector<std::string> files = listing();

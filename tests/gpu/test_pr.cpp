@@ -90,7 +90,9 @@ TEST_F(PrTest, TablesHaveThePaperProperties) {
   // λ_opt never exceeds Cook's λ at the same distance, and never grows with distance.
   for (int j = 0; j < D_SAMPLES; ++j) {
     EXPECT_LE(t.lambda_opt[j], t.lambda_cook[j] + 1e-6f) << j;
-    if (j > 0) EXPECT_LE(t.lambda_opt[j], t.lambda_opt[j - 1] + 1e-6f) << j;
+    if (j > 0) {
+      EXPECT_LE(t.lambda_opt[j], t.lambda_opt[j - 1] + 1e-6f) << j;
+    }
   }
   EXPECT_FLOAT_EQ(t.lambda_opt[0], 1.0f);
 }

@@ -74,7 +74,9 @@ TEST(Mesher, RingsAreCirclesOfTheirRadiusAroundTheAxis) {
     // Vertex 0 lies along the frame's normal; the seam vertex repeats it exactly.
     EXPECT_NEAR(glm::length(m.vertices[r.first_vertex].position - (r.center + r.radius * r.normal)), 0.0f, 1e-5f);
     EXPECT_EQ(m.vertices[r.first_vertex].position, m.vertices[r.first_vertex + r.sides].position);
-    if (k > 0 && info.rings[k - 1].chain == r.chain) EXPECT_EQ(r.sides, info.rings[k - 1].sides);
+    if (k > 0 && info.rings[k - 1].chain == r.chain) {
+      EXPECT_EQ(r.sides, info.rings[k - 1].sides);
+    }
   }
   // Every tip ends in one apex (the last piece of each chain tapers to a point).
   auto children = children_of(g);

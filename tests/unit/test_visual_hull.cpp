@@ -307,7 +307,9 @@ TEST(VisualHull, GrowthStaysInsideRegrowsShorterAndConservesFlow) {
     grown += r.grown;
     // No live segment outside the hull after this iteration.
     for (size_t k = 1; k < state.pos.size(); ++k)
-      if (state.alive[k]) ASSERT_TRUE(segment_inside_hull(set, state.pos[size_t(state.parent[k])], state.pos[k])) << "year " << y;
+      if (state.alive[k]) {
+        ASSERT_TRUE(segment_inside_hull(set, state.pos[size_t(state.parent[k])], state.pos[k])) << "year " << y;
+      }
     // Basipetal flow conserved: the base receives the light of every bud.
     EXPECT_NEAR(r.root_flow, r.bud_light, 1e-9 * std::max(1.0, r.bud_light));
     // A pruned bud regrows factor x the pruned length.
