@@ -184,7 +184,9 @@ int run_bench(const BenchArgs& args) {
     ThroughputOptions probe;
     probe.width = desc.width;
     probe.height = desc.height;
-    ThroughputResult raw = measure_triangle_throughput(ctx, probe);
+    probe.instances = args.probe_instances;
+    ThroughputResult raw;
+    if (probe.instances) raw = measure_triangle_throughput(ctx, probe);
 
     if (ctx.validation_messages > 0) {
       std::fprintf(stderr, "forest: %u Vulkan validation message(s); no results written (last: %s)\n",

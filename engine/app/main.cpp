@@ -140,6 +140,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--pr-every", bench.pr_every, "P, R, Q vs full detail at every k-th played frame (0: never)")->check(CLI::Range(0, 1000000));
   auto* bench_width_opt = bench_cmd->add_option("--width", bench_width, "Override [render].width")->check(CLI::Range(16, 8192));
   auto* bench_height_opt = bench_cmd->add_option("--height", bench_height, "Override [render].height")->check(CLI::Range(16, 8192));
+  bench_cmd->add_option("--probe-instances", bench.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0, 4096));
   bench_cmd->add_option("--out", bench.out, "Output folder (must exist)")->required();
   bench_cmd->add_option("--device", bench.device, "Device index or name substring");
   bench_cmd->add_option("--cache", bench.cache, "Species cache folder (default: $FOREST_CACHE or ~/.cache/forest)");
