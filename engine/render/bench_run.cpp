@@ -50,6 +50,12 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
     f.frame = options.frames[i];
     f.time = double(f.frame) / double(path.fps);
     CameraDesc camera = camera_at(path, path.keys.front().time + float(f.time), scene.desc.camera);
+    // Occlusion feeds back from the previous frame: with --every k the frames in between
+    // are drawn too (not recorded), else every played frame would be a camera cut.
+    if (mode.occlusion && i > 0)
+      for (uint32_t g = options.frames[i - 1] + 1; g < f.frame; ++g)
+        renderer.render(camera_at(path, path.keys.front().time + float(double(g) / double(path.fps)), scene.desc.camera),
+                        nullptr, settings);
     f.stats = renderer.render(camera, nullptr, settings);
     const PipelineStats& ps = f.stats.draw_pipeline;
     f.tree_triangles = ps.available ? (ps.ia_primitives > terrain_and_sky ? ps.ia_primitives - terrain_and_sky : 0)

@@ -44,7 +44,8 @@ struct BenchPlayOptions {
 // `max_frames` (0: all).
 std::vector<uint32_t> bench_frames(const CameraPath& path, uint32_t every, uint32_t max_frames);
 
-// Plays the frames in `mode` on one Renderer (occlusion history carries from frame to frame).
+// Plays the frames in `mode` on one Renderer (occlusion history carries from frame to frame;
+// with occlusion the skipped frames between played ones are drawn too, unrecorded).
 // PR: after a sampled frame, the same renderer draws that camera again as a coverage mask
 // with the mode's settings (for opt-occl: with the history the drawn frame left), and a
 // second renderer draws the full-detail mask; both are compared on the CPU (pr_image.h).
