@@ -128,4 +128,20 @@ struct WalkArgs {
 };
 int run_walk(const WalkArgs& args);
 
+struct BenchArgs {
+  std::string scene;
+  std::string path;                 // [[path]] name (default: the scene's first path)
+  std::string modes = "full,cook,opt,opt-combined,opt-occl";
+  uint32_t frames = 0;              // at most this many frames (0: the whole path)
+  uint32_t every = 1;               // play every k-th frame of the path
+  uint32_t pr_every = 10;           // P, R, Q at every k-th played frame (0: never)
+  uint32_t probe_instances = 64;    // throughput probe: sheets of 96 × 96 quads (0: no probe)
+  std::optional<uint32_t> width, height;
+  std::string out;                  // existing folder
+  std::string device;
+  std::string cache;
+  bool validate = false;
+};
+int run_bench(const BenchArgs& args);
+
 }  // namespace forest::app

@@ -1,0 +1,55 @@
+// `forest bench`: plays a scene's camera path frame by frame in one prune mode and records
+// what each frame cost and, at sampled frames, how close its coverage is to full detail.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/render/renderer.h"
+#include "engine/scene/camera_path.h"
+
+namespace forest {
+
+// full, cook, opt (the scene's baked tables, leaves in the scene's [bake] priority order),
+// opt-combined (opt on models baked with the combined priority; the caller builds that
+// scene), opt-occl (opt + depth-buffer occlusion feedback).
+struct BenchMode {
+  std::string name;
+  uint32_t prune_mode = PRUNE_FULL;
+  bool occlusion = false;
+  bool combined_priority = false;
+};
+std::optional<BenchMode> bench_mode(const std::string& name);
+const std::vector<std::string>& bench_mode_names();
+
+struct BenchFrame {
+  uint32_t frame = 0;
+  double time = 0.0;        // seconds along the path
+  FrameStats stats;
+  uint64_t tree_triangles = 0;  // draw-pass primitives minus terrain and sky
+  bool has_pr = false;
+  PrResult pr;              // coverage of this frame's trees vs full detail, same camera
+};
+
+struct BenchPlayOptions {
+  uint32_t width = 640, height = 360;
+  std::vector<uint32_t> frames;  // path frames to play, in order (time = frame / fps)
+  uint32_t pr_every = 10;        // PR at every pr_every-th played frame (0: never)
+  std::function<void(double)> progress;  // fraction of frames done
+};
+
+// The frames of `path` at its fps from its first to its last key, every `every`-th, at most
+// `max_frames` (0: all).
+std::vector<uint32_t> bench_frames(const CameraPath& path, uint32_t every, uint32_t max_frames);
+
+// Plays the frames in `mode` on one Renderer (occlusion history carries from frame to frame;
+// with occlusion the skipped frames between played ones are drawn too, unrecorded).
+// PR: after a sampled frame, the same renderer draws that camera again as a coverage mask
+// with the mode's settings (for opt-occl: with the history the drawn frame left), and a
+// second renderer draws the full-detail mask; both are compared on the CPU (pr_image.h).
+std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, const CameraPath& path,
+                                        const BenchMode& mode, const BenchPlayOptions& options);
+
+}  // namespace forest

@@ -1,0 +1,117 @@
+// forest bench as a user runs it: bad input is one line and exit 2 with nothing written; a
+// short run writes the CSV per mode, the JSON summary against Cook and the two plots.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSource = FOREST_SOURCE_DIR;
+const std::string kExe = FOREST_EXE;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class BenchCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("forest_bench_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "out");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  int run(const std::string& args) {
+    std::string cmd = "'" + kExe + "' bench " + args + " >'" + (dir_ / "stdout").string() + "' 2>'" +
+                      (dir_ / "stderr").string() + "' </dev/null";
+    int status = std::system(cmd.c_str());
+    out_ = slurp(dir_ / "stdout"), err_ = slurp(dir_ / "stderr");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  // Two fig2_1 trees (the tiny scene's species and bake: a species-cache hit) and a path.
+  fs::path scene(bool with_path = true) {
+    std::string text = "[render]\nwidth = 64\nheight = 48\nsamples = 1\n"
+                       "[camera]\nposition = [0, 6, -30]\ntarget = [0, 4, 0]\n"
+                       "[terrain]\nsize = 100\nresolution = 8\nheight = 0\n"
+                       "[bake]\nviews = 2\nresolution = 64\n"
+                       "[[species]]\npreset = \"" + kSource + "/scenes/species/fig2_1.toml\"\nseed = 1\n"
+                       "[[tree]]\nspecies = 0\nx = -3\nz = 0\n[[tree]]\nspecies = 0\nx = 4\nz = 6\n";
+    if (with_path)
+      text += "[[path]]\nname = \"dolly\"\nfps = 2\n"
+              "[[path.key]]\ntime = 0\nposition = [0, 6, -40]\ntarget = [0, 4, 0]\n"
+              "[[path.key]]\ntime = 1\nposition = [0, 6, -20]\ntarget = [0, 4, 0]\n";
+    fs::path p = dir_ / (with_path ? "scene.toml" : "nopath.toml");
+    std::ofstream(p) << text;
+    return p;
+  }
+  bool out_empty() const { return fs::is_empty(dir_ / "out"); }
+  fs::path dir_;
+  std::string out_, err_;
+};
+
+size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+TEST_F(BenchCliTest, BadInputIsOneLineExitTwoNothingWritten) {
+  std::string out = " --out '" + (dir_ / "out").string() + "'";
+  struct Case {
+    std::string args, needle;
+  };
+  std::vector<Case> cases = {
+      {"'" + scene().string() + "' --modes cook,fast" + out, "fast"},
+      {"'" + scene().string() + "' --path nowhere" + out, "nowhere"},
+      {"'" + scene(false).string() + "'" + out, "no [[path]]"},
+      {"'" + scene().string() + "' --every 0" + out, "--every"},
+      {"'" + scene().string() + "' --frames -3" + out, "--frames"},
+      {"'" + scene().string() + "' --width nan" + out, "--width"},
+      {"'" + scene().string() + "' --out '" + (dir_ / "missing").string() + "'", "missing"},
+      {"'" + (dir_ / "absent.toml").string() + "'" + out, "absent.toml"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    EXPECT_EQ(run(c.args), 2) << err_;
+    EXPECT_EQ(lines(err_), 1u) << err_;
+    EXPECT_NE(err_.find(c.needle), std::string::npos) << err_;
+    EXPECT_TRUE(out_empty());
+  }
+}
+
+TEST_F(BenchCliTest, WritesCsvJsonAndPlotsAgainstCook) {
+  ASSERT_EQ(run("'" + scene().string() + "' --modes full,cook,opt --pr-every 1 --probe-instances 2 --out '" + (dir_ / "out").string() + "'"),
+            0)
+      << err_;
+  for (const char* f : {"summary.json", "frames_full.csv", "frames_cook.csv", "frames_opt.csv", "triangles.png",
+                        "frame_time.png"})
+    EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
+  // fps 2 over 1 s: frames 0, 1, 2 (header + 3 rows), each with P, R, Q.
+  std::string csv = slurp(dir_ / "out" / "frames_opt.csv");
+  EXPECT_EQ(lines(csv), 4u) << csv;
+  auto j = nlohmann::json::parse(slurp(dir_ / "out" / "summary.json"));
+  EXPECT_FALSE(j["device"].get<std::string>().empty());
+  EXPECT_EQ(j["resolution"][0], 64);
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_GT(j["throughput_probe"]["triangles_per_second"].get<double>(), 0.0);
+  auto& m = j["modes"];
+  EXPECT_DOUBLE_EQ(m["cook"]["geometry_vs_cook"].get<double>(), 1.0);
+  // Full detail is the reference of PR: Q = 1 exactly; pruning draws less than full detail.
+  EXPECT_DOUBLE_EQ(m["full"]["q"].get<double>(), 1.0);
+  EXPECT_LT(m["cook"]["tree_triangles"].get<double>(), m["full"]["tree_triangles"].get<double>());
+  EXPECT_LT(m["opt"]["tree_triangles"].get<double>(), m["full"]["tree_triangles"].get<double>());
+  EXPECT_GT(m["opt"]["q"].get<double>(), 0.5);
+  EXPECT_LE(m["opt"]["q"].get<double>(), 1.0);
+}
