@@ -219,6 +219,8 @@ PlantonModel parse_model(const std::string& text, const std::string& name) {
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(name, line_at(text, e.byte > 0 ? e.byte - 1 : 0), "", std::string("JSON syntax: ") + e.what());
+  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number beyond double
+    throw InputError(name, 0, "", std::string("JSON: ") + e.what());
   }
   Reader r{text, name};
   if (!j.is_object()) r.fail("", "the model must be a JSON object", 1);

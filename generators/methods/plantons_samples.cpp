@@ -147,6 +147,8 @@ std::vector<TreeGraph> parse_samples(const std::string& text, const std::string&
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(name, line_at(e.byte > 0 ? e.byte - 1 : 0), "", std::string("JSON syntax: ") + e.what());
+  } catch (const json::exception& e) {  // e.g. out_of_range.406: a number beyond double
+    throw InputError(name, 0, "", std::string("JSON: ") + e.what());
   }
   if (!j.is_object() || j.value("format", "") != "forest-samples")
     throw InputError(name, 1, "format", "must be \"forest-samples\"");

@@ -89,6 +89,8 @@ Drawing parse_drawing_json(const std::string& text, const std::string& name) {
     root = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(name, line_at(text, e.byte), "", std::string("JSON syntax: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. out_of_range.406: a number beyond double
+    throw InputError(name, 0, "", std::string("JSON: ") + e.what());
   }
   if (!root.is_object()) throw InputError(name, 1, "", "expected a JSON object");
   for (auto it = root.begin(); it != root.end(); ++it)
