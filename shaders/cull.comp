@@ -31,13 +31,13 @@ void main() {
 
   // Coarsest level whose error, projected at the sphere's nearest point, stays under the
   // allowed pixels (errors are non-decreasing along the chain).
-  float dist = max(distance(center, frame.camera_pos.xyz) - radius, 1e-3);
+  float dist = max(distance(center, frame.lod_camera.xyz) - radius, 1e-3);
   uint lod = 0;
   for (uint k = 1; k < m.lod_count; ++k)
     if (m.lod_error[k] * s * frame.lod.x / dist <= frame.lod.y) lod = k;
 
   // Detail level λ and leaf area scale s from the normalized distance d.
-  float d = clamp(distance(center, frame.camera_pos.xyz) / frame.prune.x, 0.0, 1.0);
+  float d = clamp(distance(center, frame.lod_camera.xyz) / frame.prune.x, 0.0, 1.0);
   float lambda = 1.0, area_scale = 1.0;
   if (frame.prune_mode == PRUNE_COOK) {
     lambda = lambda_cook(d);

@@ -73,6 +73,7 @@ GPU_STRUCT FrameData {
   vec4 frustum[6];      // planes, xyz = inward normal, w = distance; dot(n,p)+w >= 0 inside
   vec4 lod;             // x = pixels per meter at distance 1, y = allowed error in pixels (0: LOD0 only)
   vec4 prune;           // x = distance where d reaches 1 (m), y = transition band t, z = fixed λ, w = fixed s
+  vec4 lod_camera;      // xyz the point branch LODs and λ are chosen from: the camera, unless frozen
   mat4 prev_view_proj;  // the frame the depth pyramid was built from
   vec4 prev_camera;     // xyz its camera position, w its near plane (m)
   vec4 pyramid;         // x, y = level-0 size in texels, z = level count

@@ -17,6 +17,7 @@ int run_info(const InfoArgs& args) {
   ici.pApplicationInfo = &app;
   VkInstance instance;
   VK_CHECK(vkCreateInstance(&ici, nullptr, &instance));
+  vk::pin_vulkan_libraries();
   std::printf("Vulkan devices:\n");
   for (const vk::DeviceReport& d : vk::list_devices(instance))
     std::printf("  [%u] %s (%s, Vulkan %u.%u.%u, %s)\n", d.index, d.name.c_str(), d.type.c_str(),

@@ -51,6 +51,7 @@ struct WalkState {
   bool playback_available = false;
   bool playing = false;
   bool screenshot = false;
+  bool freeze_lod = false;  // K: keep choosing LODs and λ from where K was pressed
   bool framebuffer_changed = false;
   double wheel = 0.0;
   std::string message;  // shown on the HUD for a few seconds
@@ -78,6 +79,10 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
       else say(s, "wireframe needs the fillModeNonSolid device feature");
       break;
     case GLFW_KEY_H: s.hud = !s.hud; break;
+    case GLFW_KEY_K:
+      s.freeze_lod = !s.freeze_lod;
+      if (!s.freeze_lod) s.settings.lod_camera.reset();
+      break;
     case GLFW_KEY_P:
       if (s.playback_available) s.playing = !s.playing;
       else say(s, "this scene has no camera path");
@@ -133,6 +138,7 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
              f.wireframe ? "on" : "off"),
       format("[O] occlusion %s (%u culled)  [P] path %s", f.occlusion ? "on" : "off", st.occluded_instances,
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),
+      format("[K] LOD %s", f.lod_camera ? "frozen" : "follows the camera"),
       format("%.0f %.0f %.0f  %.1f m/s  [C] shot", cam.position.x, cam.position.y, cam.position.z, cam.speed),
   };
   if (!s.message.empty() && s.now - s.message_time < 4.0) lines.push_back(s.message);
@@ -307,6 +313,7 @@ int run_walk(const WalkArgs& args) {
         fly_update(camera, input, float(dt), &scene.terrain);
       }
 
+      if (state.freeze_lod && !state.settings.lod_camera) state.settings.lod_camera = camera.position;
       stats = renderer.render(fly_camera_desc(camera), nullptr, state.settings);
 
       OverlayImage overlay;

@@ -135,6 +135,7 @@ struct BenchArgs {
   uint32_t frames = 0;              // at most this many frames (0: the whole path)
   uint32_t every = 1;               // play every k-th frame of the path
   uint32_t pr_every = 10;           // P, R, Q at every k-th played frame (0: never)
+  std::optional<uint32_t> occlusion_warmup;  // frames drawn before each played one (default: all between)
   uint32_t probe_instances = 64;    // throughput probe: sheets of 96 × 96 quads (0: no probe)
   std::optional<uint32_t> width, height;
   std::string out;                  // existing folder

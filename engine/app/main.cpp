@@ -143,6 +143,9 @@ int main(int argc, char** argv) {
   auto* bench_every_opt = bench_cmd->add_option("--every", bench.every, "Play every k-th frame of the path")->check(CLI::Range(1, 1000000));
   bench_frames_opt->excludes(bench_every_opt);
   bench_cmd->add_option("--pr-every", bench.pr_every, "P, R, Q vs full detail at every k-th played frame (0: never)")->check(CLI::Range(0, 1000000));
+  bench_cmd->add_option("--occlusion-warmup", bench.occlusion_warmup,
+                        "Occlusion modes: path frames drawn (unrecorded) before each played one (default: all in between)")
+      ->check(CLI::Range(0, 1000000));
   auto* bench_width_opt = bench_cmd->add_option("--width", bench_width, "Override [render].width")->check(CLI::Range(16, 8192));
   auto* bench_height_opt = bench_cmd->add_option("--height", bench_height, "Override [render].height")->check(CLI::Range(16, 8192));
   bench_cmd->add_option("--probe-instances", bench.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0, 4096));

@@ -1,5 +1,6 @@
 #include "engine/render/bench_run.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/render/pr_image.h"
@@ -51,9 +52,13 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
     f.time = double(f.frame) / double(path.fps);
     CameraDesc camera = camera_at(path, path.keys.front().time + float(f.time), scene.desc.camera);
     // Occlusion feeds back from the previous frame: with --every k the frames in between
-    // are drawn too (not recorded), else every played frame would be a camera cut.
-    if (mode.occlusion && i > 0)
-      for (uint32_t g = options.frames[i - 1] + 1; g < f.frame; ++g)
+    // (or the last few, --occlusion-warmup) are drawn too, not recorded, else every played
+    // frame would be a camera cut.
+    uint32_t since = i > 0 ? options.frames[i - 1] + 1 : f.frame;
+    if (options.occlusion_warmup)
+      since = std::max(i > 0 ? since : 0u, f.frame - std::min(f.frame, *options.occlusion_warmup));
+    if (mode.occlusion)
+      for (uint32_t g = since; g < f.frame; ++g)
         renderer.render(camera_at(path, path.keys.front().time + float(double(g) / double(path.fps)), scene.desc.camera),
                         nullptr, settings);
     f.stats = renderer.render(camera, nullptr, settings);

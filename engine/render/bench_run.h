@@ -37,6 +37,9 @@ struct BenchPlayOptions {
   uint32_t width = 640, height = 360;
   std::vector<uint32_t> frames;  // path frames to play, in order (time = frame / fps)
   uint32_t pr_every = 10;        // PR at every pr_every-th played frame (0: never)
+  // With occlusion: at most this many path frames before each played one are drawn first
+  // (unrecorded) so its feedback has a history; none: all frames since the last played one.
+  std::optional<uint32_t> occlusion_warmup;
   std::function<void(double)> progress;  // fraction of frames done
 };
 
@@ -45,7 +48,8 @@ struct BenchPlayOptions {
 std::vector<uint32_t> bench_frames(const CameraPath& path, uint32_t every, uint32_t max_frames);
 
 // Plays the frames in `mode` on one Renderer (occlusion history carries from frame to frame;
-// with occlusion the skipped frames between played ones are drawn too, unrecorded).
+// with occlusion the skipped frames between played ones, or the last `occlusion_warmup` of
+// them, are drawn too, unrecorded).
 // PR: after a sampled frame, the same renderer draws that camera again as a coverage mask
 // with the mode's settings (for opt-occl: with the history the drawn frame left), and a
 // second renderer draws the full-detail mask; both are compared on the CPU (pr_image.h).

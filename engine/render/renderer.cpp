@@ -568,6 +568,7 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const FrameSetting
   float pixels_per_meter = float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
   fd.lod = glm::vec4(pixels_per_meter, scene_.desc.lod_error_pixels, 0.0f, 0.0f);
   fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition, settings.fixed_lambda, settings.fixed_scale);
+  fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
   fd.prune_mode = settings.prune_mode;
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u);
   fd.instance_count = instance_count_;

@@ -3,6 +3,7 @@
 // Per-frame CPU work is O(1) in the number of tree instances.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "engine/render/depth_pyramid.h"
@@ -34,6 +35,10 @@ struct FrameSettings {
   // cut (this flag, or a jump detected from the camera), counts every tree as visible.
   bool occlusion = false;
   bool camera_cut = false;
+  // Choose branch LODs and λ as seen from this point instead of the camera: a frozen LOD
+  // (`forest walk`, key K) to look at what the pruning keeps, and the popping measurement,
+  // which changes the LOD viewpoint alone between two renders of one view.
+  std::optional<glm::vec3> lod_camera;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 

@@ -8,6 +8,18 @@
 
 #include "generators/common/input_error.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define FOREST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FOREST_ASAN 1
+#endif
+#endif
+#ifdef FOREST_ASAN
+#include <dlfcn.h>
+#include <link.h>
+#endif
+
 namespace forest::vk {
 
 const char* result_name(VkResult result) {
@@ -172,6 +184,22 @@ std::vector<std::pair<std::string, bool>> required_features(VkPhysicalDevice phy
   };
 }
 
+void pin_vulkan_libraries() {
+#ifdef FOREST_ASAN
+  // The loader dlcloses drivers and layers at vkDestroyInstance; LeakSanitizer runs at exit and
+  // then sees their process-lifetime allocations from an "<unknown module>", which no
+  // suppression can name (tests/lsan.supp). Pinned with RTLD_NODELETE, they keep their names.
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void*) {
+        const char* name = info->dlpi_name;
+        if (name && (std::strstr(name, "libvulkan_") || std::strstr(name, "libVkLayer_")))
+          dlopen(name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+        return 0;
+      },
+      nullptr);
+#endif
+}
+
 void create_context(Context& ctx, const ContextOptions& options) {
   ctx.validation = options.validation;
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -294,6 +322,7 @@ void create_context(Context& ctx, const ContextOptions& options) {
   dci.enabledExtensionCount = ctx.surface ? 1 : 0;
   dci.ppEnabledExtensionNames = &swapchain_extension;
   VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
+  pin_vulkan_libraries();
   vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};

@@ -64,6 +64,9 @@ struct Context {
   std::string last_validation_message;
 };
 
+// Sanitizer builds only (a no-op otherwise): keeps the Vulkan drivers and layers loaded now
+// in memory after the loader unloads them, so leak reports name them.
+void pin_vulkan_libraries();
 // All devices of the instance, as `forest info` lists them.
 std::vector<DeviceReport> list_devices(VkInstance instance);
 // Creates instance + device; throws InputError for a bad --device, VkFailure when no device

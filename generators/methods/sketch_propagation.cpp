@@ -78,7 +78,7 @@ PropagatedTree propagate_branches(const SketchTree& t, const SketchDepths& d, co
       const std::vector<Child>& block = blocks[rng.next_u32() % blocks.size()];
       glm::dvec3 po = out.position[size_t(o)];
       double lo = glm::length(po - out.position[size_t(out.parent[size_t(o)])]);
-      const SegmentFrame& f = frame[size_t(o)];
+      const SegmentFrame f = frame[size_t(o)];  // a copy: frame grows below
       for (const Child& c : block) {
         glm::dvec3 v = lo * (c.local.x * f.t + c.local.y * f.n + c.local.z * f.b);
         bool closed = false;

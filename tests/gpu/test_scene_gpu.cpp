@@ -111,8 +111,9 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
     EXPECT_LE(st.draw_pipeline.clip_primitives, st.draw_pipeline.clip_invocations * 2);
     // One cull thread per instance, rounded up to whole workgroups (not on lavapipe, where
     // a statistics query around a dispatch crashes the driver).
-    if (st.cull_pipeline.available)
+    if (st.cull_pipeline.available) {
       EXPECT_EQ(st.cull_pipeline.cs_invocations, uint64_t((40 + CULL_GROUP_SIZE - 1) / CULL_GROUP_SIZE) * CULL_GROUP_SIZE);
+    }
   }
 }
 
