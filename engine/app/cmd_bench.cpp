@@ -310,7 +310,7 @@ int run_bench(const BenchArgs& args) {
         std::printf("%s", row + 1);
       }
       write_text(out / "summary.json", j.dump(2) + "\n");
-      md << "\nGoals (issue 8): >= 45 % less geometry than Cook and >= 2x its frame rate at equal Q "
+      md << "\nGoals (seed 000 §7.6, forest issue 9): >= 45 % less geometry than Cook and >= 2x its frame rate at equal Q "
             "(paper: 30.1 %, ~1.67x). Plots: triangles.png, frame_time.png; per frame: frames_<mode>.csv.\n";
       write_text(out / "summary.md", md.str());
       write_path_plot(results, "tree triangles per frame (" + label + ")", "triangles",
