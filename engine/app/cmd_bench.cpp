@@ -232,8 +232,8 @@ int run_bench(const BenchArgs& args) {
          << " played frames; " << utc_now() << ".\n\n"
          << "Raw throughput probe: " << raw.triangles_per_frame << " triangles in " << raw.draw_ms << " ms GPU draw = "
          << raw.triangles_per_second() * 1e-6 << " M triangles/s.\n\n"
-         << "| mode | tree triangles | vs Cook | GPU frame ms | vs Cook | frame rate vs Cook | mean Q | Q >= Q_cook | "
-            "mean lambda | triangles/s of probe |\n|---|---|---|---|---|---|---|---|---|---|\n";
+         << "| mode | tree triangles | vs Cook | leaves | vs Cook | GPU frame ms | vs Cook | frame rate vs Cook | mean Q | "
+            "Q >= Q_cook | mean lambda | triangles/s of probe |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
       std::printf("%-13s %10s %10s %9s %9s %7s %7s %9s %9s\n", "mode", "triangles", "vs cook", "frame ms",
                   "vs cook", "Q", "Q>=cook", "mean lam", "tri/s %");
       for (ModeSummary& m : results) {
@@ -264,12 +264,14 @@ int run_bench(const BenchArgs& args) {
         e["q"] = m.quality;
         e["triangles_per_second"] = tris_per_s;
         e["throughput_fraction"] = raw.triangles_per_second() > 0 ? tris_per_s / raw.triangles_per_second() : 0.0;
-        double geo = 0, time = 0;
+        double geo = 0, time = 0, leaf_ratio = 0;
         bool q_ok = false;
         if (cook && cook->triangles > 0 && cook->gpu_frame_ms > 0) {
           geo = m.triangles / cook->triangles, time = m.gpu_frame_ms / cook->gpu_frame_ms;
           q_ok = m.quality >= cook->quality;
+          leaf_ratio = cook->leaves > 0 ? m.leaves / cook->leaves : 0.0;
           e["geometry_vs_cook"] = geo;
+          e["leaves_vs_cook"] = leaf_ratio;  // foliage alone, as seed 000's Table 7.4 counts it
           e["frame_time_vs_cook"] = time;
           e["frame_rate_vs_cook"] = time > 0 ? 1.0 / time : 0.0;
           e["q_at_least_cook"] = q_ok;
@@ -287,9 +289,18 @@ int run_bench(const BenchArgs& args) {
                     cook ? (q_ok ? "yes" : "no") : "-", m.lambda,
                     100.0 * (raw.triangles_per_second() > 0 ? tris_per_s / raw.triangles_per_second() : 0.0));
         char row[512];
-        std::snprintf(row, sizeof row, "| %s | %.0f | %.1f%% | %.2f | %.1f%% | %.2fx | %.4f | %s | %.3f | %.1f%% |\n",
-                      m.mode.name.c_str(), m.triangles, 100.0 * geo, m.gpu_frame_ms, 100.0 * time,
-                      time > 0 ? 1.0 / time : 0.0, m.quality, cook ? (q_ok ? "yes" : "no") : "-", m.lambda,
+        auto cell = [](bool known, const char* format, double value) {  // "-" for what was not measured
+          char text[32] = "-";
+          if (known) std::snprintf(text, sizeof text, format, value);
+          return std::string(text);
+        };
+        auto vs_cook = [&](const char* format, double value) { return cell(cook != nullptr, format, value); };
+        std::snprintf(row, sizeof row, "| %s | %.0f | %s | %.0f | %s | %.2f | %s | %s | %s | %s | %.3f | %.1f%% |\n",
+                      m.mode.name.c_str(), m.triangles, vs_cook("%.1f%%", 100.0 * geo).c_str(), m.leaves,
+                      vs_cook("%.1f%%", 100.0 * leaf_ratio).c_str(), m.gpu_frame_ms,
+                      vs_cook("%.1f%%", 100.0 * time).c_str(), vs_cook("%.2fx", time > 0 ? 1.0 / time : 0.0).c_str(),
+                      cell(m.pr_frames > 0, "%.4f", m.quality).c_str(),
+                      cook && m.pr_frames ? (q_ok ? "yes" : "no") : "-", m.lambda,
                       100.0 * (raw.triangles_per_second() > 0 ? tris_per_s / raw.triangles_per_second() : 0.0));
         md << row;
         write_text(out / ("frames_" + m.mode.name + ".csv"), frames_csv(m));

@@ -138,9 +138,9 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
              f.wireframe ? "on" : "off"),
       format("[O] occlusion %s (%u culled)  [P] path %s", f.occlusion ? "on" : "off", st.occluded_instances,
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),
-      format("[K] LOD %s", f.lod_camera ? "frozen" : "follows the camera"),
       format("%.0f %.0f %.0f  %.1f m/s  [C] shot", cam.position.x, cam.position.y, cam.position.z, cam.speed),
   };
+  if (f.lod_camera) lines.push_back("[K] LOD frozen");
   if (!s.message.empty() && s.now - s.message_time < 4.0) lines.push_back(s.message);
   return lines;
 }
