@@ -63,6 +63,10 @@ void validate(Drawing& d) {
       } catch (const nlohmann::json::type_error&) {
         stroke_error(d, i, key, "not valid UTF-8 text");
       }
+      // Names are plain tokens in both formats, so that every accepted drawing can be
+      // written as SVG and read back (a quote, '=', '<', '>' or '&' would end an attribute).
+      if (text->find_first_of("\"'=<>&") != std::string::npos)
+        stroke_error(d, i, key, "quotes, '=', '<', '>' and '&' are not supported in names");
     }
   }
   stroke_parents(d);  // parent errors now, not later in a method
