@@ -31,6 +31,10 @@ struct ModeSummary {
   double triangles = 0, vertices = 0, leaves = 0, visible = 0, lambda = 0, quality = 0, precision = 0, recall = 0;
   double leaves_saved = 0, triangles_saved = 0, occluded = 0;  // by occlusion feedback, per frame
   uint32_t pr_frames = 0;
+  // Shares of what the mode would draw without occlusion, and of the GPU frame.
+  double leaves_saved_share() const { return leaves_saved / std::max(leaves + leaves_saved, 1.0); }
+  double triangles_saved_share() const { return triangles_saved / std::max(triangles + triangles_saved, 1.0); }
+  double occlusion_gpu_share() const { return gpu_frame_ms > 0 ? (gpu_pyramid_ms + gpu_cull_ms) / gpu_frame_ms : 0.0; }
 };
 
 ModeSummary summarize(const BenchMode& mode, std::vector<BenchFrame> frames) {
@@ -252,12 +256,11 @@ int run_bench(const BenchArgs& args) {
         e["mean_lambda"] = m.lambda;
         if (m.mode.occlusion)  // what occlusion feedback saved against the same mode without it, per frame
           e["occlusion"] = {{"leaves_saved", m.leaves_saved},
-                            {"leaves_saved_share", m.leaves_saved / std::max(m.leaves + m.leaves_saved, 1.0)},
+                            {"leaves_saved_share", m.leaves_saved_share()},
                             {"triangles_saved", m.triangles_saved},
-                            {"triangles_saved_share", m.triangles_saved / std::max(m.triangles + m.triangles_saved, 1.0)},
+                            {"triangles_saved_share", m.triangles_saved_share()},
                             {"instances_culled", m.occluded},
-                            {"gpu_pyramid_and_cull_share",
-                             m.gpu_frame_ms > 0 ? (m.gpu_pyramid_ms + m.gpu_cull_ms) / m.gpu_frame_ms : 0.0}};
+                            {"gpu_pyramid_and_cull_share", m.occlusion_gpu_share()}};
         e["pr_frames"] = m.pr_frames;
         e["precision"] = m.precision;
         e["recall"] = m.recall;
@@ -312,11 +315,9 @@ int run_bench(const BenchArgs& args) {
                       "\nOcclusion feedback (%s), mean per frame: %.0f leaves saved (%.1f %% of what the mode alone "
                       "draws), %.0f triangles saved (%.1f %%), %.1f trees culled; depth pyramid %.3f ms + cull %.3f ms "
                       "= %.2f %% of the GPU frame (goal <= 5 %%).\n",
-                      m.mode.name.c_str(), m.leaves_saved,
-                      100.0 * m.leaves_saved / std::max(m.leaves + m.leaves_saved, 1.0), m.triangles_saved,
-                      100.0 * m.triangles_saved / std::max(m.triangles + m.triangles_saved, 1.0), m.occluded,
-                      m.gpu_pyramid_ms, m.gpu_cull_ms,
-                      m.gpu_frame_ms > 0 ? 100.0 * (m.gpu_pyramid_ms + m.gpu_cull_ms) / m.gpu_frame_ms : 0.0);
+                      m.mode.name.c_str(), m.leaves_saved, 100.0 * m.leaves_saved_share(), m.triangles_saved,
+                      100.0 * m.triangles_saved_share(), m.occluded, m.gpu_pyramid_ms, m.gpu_cull_ms,
+                      100.0 * m.occlusion_gpu_share());
         md << row;
         std::printf("%s", row + 1);
       }

@@ -12,12 +12,11 @@ namespace forest {
 namespace {
 
 // Largest 8-connected group of set pixels, by flood fill (clears `set`).
-uint64_t largest_group(std::vector<uint8_t> &set, uint32_t w, uint32_t h) {
+uint64_t largest_group(std::vector<uint8_t>& set, uint32_t w, uint32_t h) {
   uint64_t largest = 0;
   std::vector<uint32_t> stack;
   for (size_t seed = 0; seed < set.size(); ++seed) {
-    if (!set[seed])
-      continue;
+    if (!set[seed]) continue;
     uint64_t size = 0;
     set[seed] = 0;
     stack.push_back(uint32_t(seed));
@@ -29,11 +28,9 @@ uint64_t largest_group(std::vector<uint8_t> &set, uint32_t w, uint32_t h) {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           int nx = x + dx, ny = y + dy;
-          if (nx < 0 || ny < 0 || nx >= int(w) || ny >= int(h))
-            continue;
+          if (nx < 0 || ny < 0 || nx >= int(w) || ny >= int(h)) continue;
           uint32_t q = uint32_t(ny) * w + uint32_t(nx);
-          if (set[q])
-            set[q] = 0, stack.push_back(q);
+          if (set[q]) set[q] = 0, stack.push_back(q);
         }
     }
     largest = std::max(largest, size);
@@ -41,14 +38,14 @@ uint64_t largest_group(std::vector<uint8_t> &set, uint32_t w, uint32_t h) {
   return largest;
 }
 
-} // namespace
+}  // namespace
 
-PopStep measure_pop(const FrameImage &before, const FrameImage &after) {
+PopStep measure_pop(const FrameImage& before, const FrameImage& after) {
   if (before.width != after.width || before.height != after.height)
     throw std::invalid_argument("measure_pop: images of different sizes");
   const uint32_t w = before.width, h = before.height;
-  auto covered = [](const FrameImage &im, size_t p) {
-    const uint8_t *c = &im.rgba[p * 4];
+  auto covered = [](const FrameImage& im, size_t p) {
+    const uint8_t* c = &im.rgba[p * 4];
     return std::max({c[0], c[1], c[2]}) >= kCoverageThreshold;
   };
   PopStep r;
@@ -72,48 +69,33 @@ PopStep measure_pop(const FrameImage &before, const FrameImage &after) {
   return r;
 }
 
-PopStep PopWalk::worst_share() const {
+namespace {
+
+// The step with the largest key(step); an empty PopStep when there is none.
+template <class Key>
+PopStep worst_by(const std::vector<PopStep>& steps, Key key) {
   PopStep worst;
-  for (const PopStep &s : steps)
-    if (s.share() > worst.share())
-      worst = s;
+  for (const PopStep& s : steps)
+    if (key(s) > key(worst)) worst = s;
   return worst;
 }
 
-PopStep PopWalk::worst_blob() const {
-  PopStep worst;
-  for (const PopStep &s : steps)
-    if (s.largest_blob > worst.largest_blob)
-      worst = s;
-  return worst;
-}
+}  // namespace
 
+PopStep PopWalk::worst_share() const { return worst_by(steps, [](const PopStep& s) { return s.share(); }); }
+PopStep PopWalk::worst_blob() const { return worst_by(steps, [](const PopStep& s) { return s.largest_blob; }); }
 PopStep PopWalk::worst_solid_blob() const {
-  PopStep worst;
-  for (const PopStep &s : steps)
-    if (s.largest_solid_blob > worst.largest_solid_blob)
-      worst = s;
-  return worst;
+  return worst_by(steps, [](const PopStep& s) { return s.largest_solid_blob; });
 }
-
-PopStep PopWalk::worst_of_motion() const {
-  PopStep worst;
-  for (const PopStep &s : steps)
-    if (s.of_motion() > worst.of_motion())
-      worst = s;
-  return worst;
-}
+PopStep PopWalk::worst_of_motion() const { return worst_by(steps, [](const PopStep& s) { return s.of_motion(); }); }
 
 double PopWalk::mean_share() const {
   double sum = 0.0;
-  for (const PopStep &s : steps)
-    sum += s.share();
+  for (const PopStep& s : steps) sum += s.share();
   return steps.empty() ? 0.0 : sum / double(steps.size());
 }
 
-PopWalk measure_popping(Renderer &renderer,
-                        const std::vector<CameraDesc> &cameras,
-                        FrameSettings settings) {
+PopWalk measure_popping(Renderer& renderer, const std::vector<CameraDesc>& cameras, FrameSettings settings) {
   settings.mask = true;
   settings.occlusion = false;
   PopWalk walk;
@@ -121,8 +103,7 @@ PopWalk measure_popping(Renderer &renderer,
   for (size_t t = 0; t + 1 < cameras.size(); ++t) {
     settings.lod_camera = cameras[t].position;
     renderer.render(cameras[t], &now, settings);
-    if (t > 0)
-      walk.steps.back().moved = measure_pop(previous, now).changed;
+    if (t > 0) walk.steps.back().moved = measure_pop(previous, now).changed;
     settings.lod_camera = cameras[t + 1].position;
     renderer.render(cameras[t], &lod_moved, settings);
     walk.steps.push_back(measure_pop(now, lod_moved));
@@ -131,4 +112,4 @@ PopWalk measure_popping(Renderer &renderer,
   return walk;
 }
 
-} // namespace forest
+}  // namespace forest

@@ -221,19 +221,11 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
     if (polyline || path || line) {
       Stroke s;
       s.line = line_at(text, at);
-      // Names are plain tokens: a quote, '=', '<', '>' or '&' inside one would make our
-      // attribute scan (and the SVG we write back) read it as another attribute.
-      auto plain = [&](const char* key) {
-        std::string v = svg_attribute(element, key);
-        if (v.find_first_of("\"'=<>&") != std::string::npos)
-          throw InputError(name, s.line, key, "quotes, '=', '<', '>' and '&' are not supported in names");
-        return v;
-      };
-      s.id = plain("id");
-      std::string role = plain("class");
+      s.id = svg_attribute(element, "id");
+      std::string role = svg_attribute(element, "class");
       if (!role.empty()) s.role = role;
-      s.parent = plain("data-parent");
-      std::string level = plain("data-level");
+      s.parent = svg_attribute(element, "data-parent");
+      std::string level = svg_attribute(element, "data-level");
       std::string key = polyline ? "points" : path ? "d" : "x1";
       if (!level.empty()) {
         char* e = nullptr;

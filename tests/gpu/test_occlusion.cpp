@@ -10,6 +10,7 @@
 #include "engine/render/renderer.h"
 #include "generators/bake/hull.h"
 #include "generators/methods/methods.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 
@@ -17,19 +18,7 @@ namespace {
 
 const std::string kSource = FOREST_SOURCE_DIR;
 
-class OcclusionTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
-  }
-  vk::Context ctx_;
-};
+class OcclusionTest : public ValidatedGpuTest {};
 
 // The broadleaf preset with its metaball hull attached (the hull samples a bake writes).
 const TreeModel& broadleaf_with_hull() {

@@ -11,6 +11,7 @@
 #include "engine/render/tree_bake.h"
 #include "engine/scene/scene.h"
 #include "generators/methods/methods.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 
@@ -18,27 +19,13 @@ namespace {
 
 const std::string kSource = FOREST_SOURCE_DIR;
 
-class PoppingTest : public ::testing::Test {
-protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u)
-        << "last: " << ctx_.last_validation_message;
-  }
-  vk::Context ctx_;
-};
+class PoppingTest : public ValidatedGpuTest {};
 
 // The broadleaf preset, baked (λ/s tables for mode opt) on one small view.
-const TreeModel &baked_broadleaf(vk::Context &ctx) {
+const TreeModel& baked_broadleaf(vk::Context& ctx) {
   static TreeModel model;
   if (model.leaves.empty()) {
-    model = generate_from_species(kSource + "/scenes/species/broadleaf.toml",
-                                  GenerateOptions{11});
+    model = generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11});
     TreeBakeSettings bake;
     bake.views = 1;
     bake.resolution = 64;
@@ -48,7 +35,7 @@ const TreeModel &baked_broadleaf(vk::Context &ctx) {
 }
 
 // A grove of 40 trees on flat ground, pruned over 120 m.
-Scene grove(const TreeModel &m) {
+Scene grove(const TreeModel& m) {
   Scene s;
   s.desc.width = 240;
   s.desc.height = 160;
@@ -82,18 +69,17 @@ std::vector<CameraDesc> approach() {
   return path;
 }
 
-void print(const char *what, const PopWalk &w) {
+void print(const char* what, const PopWalk& w) {
   PopStep s = w.worst_share(), b = w.worst_blob(), m = w.worst_of_motion();
-  std::printf("%s: mean %.4f, worst %.4f (%llu of %llu px), largest blob %llu "
-              "px (solid %llu), worst of motion %.3f (%llu of %llu)\n",
-              what, w.mean_share(), s.share(), (unsigned long long)s.changed,
-              (unsigned long long)s.covered, (unsigned long long)b.largest_blob,
-              (unsigned long long)w.worst_solid_blob().largest_solid_blob,
-              m.of_motion(), (unsigned long long)m.changed,
-              (unsigned long long)m.moved);
+  std::printf(
+      "%s: mean %.4f, worst %.4f (%llu of %llu px), largest blob %llu "
+      "px (solid %llu), worst of motion %.3f (%llu of %llu)\n",
+      what, w.mean_share(), s.share(), (unsigned long long)s.changed, (unsigned long long)s.covered,
+      (unsigned long long)b.largest_blob, (unsigned long long)w.worst_solid_blob().largest_solid_blob, m.of_motion(),
+      (unsigned long long)m.changed, (unsigned long long)m.moved);
 }
 
-} // namespace
+}  // namespace
 
 // What a step of the LOD viewpoint alone flips stays scattered and small: the
 // transition band shrinks each leaf out over many frames, branch levels switch
@@ -116,8 +102,7 @@ TEST_F(PoppingTest, LodStepsFlipOnlySmallScatteredGroupsOfPixels) {
     print(mode == PRUNE_COOK ? "cook" : "opt", w);
     EXPECT_LE(w.worst_solid_blob().largest_solid_blob, max_blob);
     EXPECT_LE(w.mean_share(), 0.02);
-    EXPECT_GT(w.mean_share(), 0.0)
-        << "λ changes along the walk: some pixels must flip";
+    EXPECT_GT(w.mean_share(), 0.0) << "λ changes along the walk: some pixels must flip";
   }
   s.desc.transition = 0.0f;
   s.desc.lod_error_pixels = 8.0f;
@@ -126,6 +111,5 @@ TEST_F(PoppingTest, LodStepsFlipOnlySmallScatteredGroupsOfPixels) {
   cook.prune_mode = PRUNE_COOK;
   PopWalk w = measure_popping(popping, path, cook);
   print("cook without band, 8 px LOD error", w);
-  EXPECT_GT(w.worst_solid_blob().largest_solid_blob, max_blob)
-      << "the measurement does not see discrete LOD pops";
+  EXPECT_GT(w.worst_solid_blob().largest_solid_blob, max_blob) << "the measurement does not see discrete LOD pops";
 }

@@ -7,6 +7,7 @@
 #include "engine/render/contact_sheet.h"
 #include "engine/render/pr_bake.h"
 #include "generators/methods/methods.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 
@@ -14,19 +15,7 @@ namespace {
 
 const std::string kSource = FOREST_SOURCE_DIR;
 
-class PrTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
-  }
-  vk::Context ctx_;
-};
+class PrTest : public ValidatedGpuTest {};
 
 TreeModel broadleaf() { return generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11}); }
 

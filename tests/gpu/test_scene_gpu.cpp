@@ -12,6 +12,7 @@
 #include "engine/scene/scene.h"
 #include "generators/bake/asset_io.h"
 #include "generators/methods/methods.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
@@ -20,19 +21,7 @@ namespace {
 
 const std::string kSource = FOREST_SOURCE_DIR;
 
-class SceneGpuTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
-  }
-  vk::Context ctx_;
-};
+class SceneGpuTest : public ValidatedGpuTest {};
 
 std::string scene_text(const std::string& extra) {
   return R"(
