@@ -27,6 +27,6 @@ void main() {
   out_albedo = m.bark_color.rgb * stripes * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
   out_uv_layer = vec3(in_uv, 0.0);
-  if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.lambda) * 0.6;
+  if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda) * 0.6;
   gl_Position = frame.view_proj * vec4(world, 1.0);
 }

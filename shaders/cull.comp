@@ -3,13 +3,16 @@
 // One thread per tree instance: frustum test of the bounding sphere, branch LOD by projected
 // error, then append the compacted indirect draws (branches, and the model's leaves as
 // instances of its card). With occlusion on, λ is scaled by the tree's visibility in the
-// previous frame (occlusion.glsl) and trees hidden there entirely are not drawn.
+// previous frame (occlusion.glsl) and trees hidden there entirely are not drawn; the leaves
+// this drops from a partly visible tree become a TailJob for tail_cull.comp, which keeps
+// those the previous frame could see.
 #include "common.glsl"
 #include "occlusion.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_DRAW_COUNTS, std430) buffer Counts { DrawCounts counts; };
+layout(set = 0, binding = BINDING_TAIL_JOBS, std430) writeonly buffer TailJobs { TailJob tail_jobs[]; };
 
 // s_opt(λ) from the model's table, linearly interpolated.
 float opt_area_scale(Model m, float lambda) {
@@ -20,6 +23,7 @@ float opt_area_scale(Model m, float lambda) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
+  if (i == 0) counts.tail_groups_y = counts.tail_groups_z = 1;  // tail_cull.comp's dispatch
   if (i >= frame.instance_count) return;
   Instance inst = instances[i];
   Model m = models[inst.model];
@@ -52,6 +56,7 @@ void main() {
     area_scale = frame.prune.w;
   }
   uint k = leaf_prefix(lambda, m.leaf_count);
+  float shown_lambda = lambda;
 
   // Occlusion feedback (seed 000 §7.4): λ_occl = λ(d) · o, o = max(f, 0.1) with hysteresis.
   if ((frame.occlusion & OCCLUSION_ON) != 0) {
@@ -63,37 +68,44 @@ void main() {
     st.visible = f;
     st.occluded = hidden ? 1 : 0;
     instance_states[i] = st;
-    uint k_mode = k;
     if (hidden) {
       atomicAdd(counts.occluded_instances, 1);
-      atomicAdd(counts.leaves_saved, k_mode);
-      atomicAdd(counts.triangles_saved, k_mode * (m.card_index_count / 3) + m.lod_index_count[lod] / 3);
+      atomicAdd(counts.leaves_saved, k);
+      atomicAdd(counts.triangles_saved, k * (m.card_index_count / 3) + m.lod_index_count[lod] / 3);
       return;
     }
-    if (st.occlusion < 1.0) {
-      lambda *= st.occlusion;
-      // Survivors compensate as the mode prescribes for the lower λ.
-      if (frame.prune_mode == PRUNE_COOK) {
-        area_scale = 1.0 / max(lambda, 1e-3);
-      } else if (frame.prune_mode == PRUNE_OPT && m.has_tables != 0) {
-        area_scale = opt_area_scale(m, lambda);
+    // [ours] §7.4 draws the prefix of λ · o and nothing else, so the leaves of a partly hidden
+    // tree that show through gaps in what hides it vanish with the rest. Here the prefix of
+    // λ · o is still drawn whole (the floor of §7.4 against a wrong estimate), and the rest of
+    // the mode's prefix, [λ·o·n, λ·n), is tested leaf by leaf: those the previous frame saw
+    // are drawn too. What shows is then the picture of λ itself, so the leaf sizes, area
+    // scale and transition band stay those of λ, and only hidden leaves are saved.
+    uint k_occl = leaf_prefix(lambda * st.occlusion, m.leaf_count);
+    if (k_occl < k) {
+      uint tail = k - k_occl;
+      uint base = atomicAdd(counts.tail_leaves, tail);
+      if (base + tail <= frame.tail_capacity) {  // else no room left: the whole prefix is drawn
+        uint j = atomicAdd(counts.tail_jobs, 1);
+        uint l = atomicAdd(counts.leaf_draws, 1);
+        tail_jobs[j] = TailJob(frame.leaf_command_base + l, m.leaf_offset + k_occl, m.leaf_offset + k, base);
+        commands[frame.leaf_command_base + l] = DrawCommand(m.card_index_count, 0, m.card_first_index,
+            m.card_vertex_offset, base, i, lambda, area_scale, lambda * st.occlusion, LEAF_LIST_TAIL);
+        k = k_occl;
       }
-      k = leaf_prefix(lambda, m.leaf_count);
-      atomicAdd(counts.leaves_saved, k_mode - k);
-      atomicAdd(counts.triangles_saved, (k_mode - k) * (m.card_index_count / 3));
     }
+    shown_lambda = lambda * st.occlusion;
   }
 
   uint b = atomicAdd(counts.branch_draws, 1);
   atomicAdd(counts.lod_draws[lod], 1);
   atomicAdd(counts.branch_triangles, m.lod_index_count[lod] / 3);
-  atomicAdd(counts.lambda_sum, uint(clamp(lambda, 0.0, 1.0) * 4096.0 + 0.5));
+  atomicAdd(counts.lambda_sum, uint(clamp(shown_lambda, 0.0, 1.0) * 4096.0 + 0.5));
   commands[b] = DrawCommand(m.lod_index_count[lod], 1, m.lod_first_index[lod], m.lod_vertex_offset[lod], 0, i,
-                            lambda, area_scale);
+                            lambda, area_scale, shown_lambda, LEAF_LIST_DIRECT);
   if (k > 0) {
     uint l = atomicAdd(counts.leaf_draws, 1);
     atomicAdd(counts.leaves_drawn, k);
-    commands[frame.leaf_command_base + l] =
-        DrawCommand(m.card_index_count, k, m.card_first_index, m.card_vertex_offset, m.leaf_offset, i, lambda, area_scale);
+    commands[frame.leaf_command_base + l] = DrawCommand(m.card_index_count, k, m.card_first_index,
+        m.card_vertex_offset, m.leaf_offset, i, lambda, area_scale, shown_lambda, LEAF_LIST_DIRECT);
   }
 }

@@ -33,6 +33,8 @@ using mat4 = glm::mat4;
 #define BINDING_DEPTH_PYRAMID 11   // previous frame's depth pyramid (farthest depth per texel)
 #define BINDING_HULL_SAMPLES 12    // HullSample per model point (occlusion test, §7.4)
 #define BINDING_INSTANCE_STATE 13  // InstanceState: occlusion feedback kept across frames
+#define BINDING_TAIL_JOBS 14       // TailJob per partly occluded tree (cull.comp -> tail_cull.comp)
+#define BINDING_TAIL_LEAVES 15     // leaf indices of the visible tails, in priority order
 
 // FrameData.prune_mode: how many leaves of each tree are drawn (seed 000 ch7).
 #define PRUNE_FULL 0   // every leaf, λ = 1
@@ -58,6 +60,7 @@ using mat4 = glm::mat4;
 #define OCCLUSION_CUT 2  // no usable previous frame (first frame, camera cut): all count as visible
 
 #define CULL_GROUP_SIZE 64
+#define TAIL_GROUP_SIZE 64    // leaves tested at once by one tail_cull.comp workgroup
 #define PYRAMID_GROUP_SIZE 8  // 8x8 texels per depth_pyramid.comp workgroup
 #define PR_GROUP_SIZE 256
 
@@ -82,7 +85,8 @@ GPU_STRUCT FrameData {
   uint prune_mode;         // PRUNE_*
   uint view_flags;         // VIEW_*
   uint occlusion;          // OCCLUSION_*
-  uint pad0, pad1, pad2;
+  uint tail_capacity;      // entries of the tail leaf buffer (BINDING_TAIL_LEAVES)
+  uint pad1, pad2;
 };
 
 // One tree instance in the scene: placed once at load, never touched per frame by the CPU.
@@ -115,6 +119,7 @@ GPU_STRUCT Model {
   uint sample_offset;        // first HullSample of this model
   uint sample_count;
   float occlusion_margin;    // model-space meters a sample is moved toward the camera before the test
+  float card_radius;         // farthest vertex of the leaf card from its origin (leaf scale 1)
 };
 
 // One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.
@@ -138,6 +143,19 @@ GPU_STRUCT Leaf {
   vec4 color;           // rgb multiplier of the model's leaf color
 };
 
+// One partly occluded tree whose leaves [first_leaf, end_leaf) of the mode's prefix are
+// tested one by one against the depth pyramid by tail_cull.comp (indices into leaves[]).
+struct TailJob {
+  uint command;     // its leaf draw, whose instance_count tail_cull.comp fills in
+  uint first_leaf;
+  uint end_leaf;
+  uint base;        // first entry reserved for it in the tail leaf buffer
+};
+
+// DrawCommand.leaf_list: where a leaf draw finds its leaves.
+#define LEAF_LIST_DIRECT 0  // gl_InstanceIndex is the leaf (a prefix of the model's leaves)
+#define LEAF_LIST_TAIL 1    // gl_InstanceIndex indexes the tail leaf buffer, which holds the leaf
+
 // VkDrawIndexedIndirectCommand followed by the tree instance the draw belongs to.
 struct DrawCommand {
   uint index_count;
@@ -146,8 +164,10 @@ struct DrawCommand {
   int vertex_offset;
   uint first_instance;
   uint instance;
-  float lambda;      // detail level of this tree (leaf draws)
-  float area_scale;  // s: leaf area scale compensating the dropped leaves
+  float lambda;        // detail level the leaf sizes and the transition band follow
+  float area_scale;    // s: leaf area scale compensating the dropped leaves
+  float shown_lambda;  // λ the λ view colours the tree by (with occlusion: λ · o)
+  uint leaf_list;      // LEAF_LIST_*
 };
 
 // Counters written by cull.comp, read by vkCmdDrawIndexedIndirectCount.
@@ -157,10 +177,14 @@ struct DrawCounts {
   uint leaves_drawn;
   uint branch_triangles;
   uint lod_draws[MAX_BRANCH_LODS];  // branch draws per LOD level
-  uint lambda_sum;                  // Σ λ over visible trees, in 1/65536 (mean λ)
+  uint lambda_sum;                  // Σ λ over visible trees, in 1/4096 (mean λ)
   uint occluded_instances;          // in the frustum but culled by occlusion
   uint leaves_saved;                // leaves the mode would draw minus leaves drawn (occlusion)
   uint triangles_saved;             // leaf + branch triangles saved by occlusion
+  // VkDispatchIndirectCommand of tail_cull.comp: one workgroup per TailJob.
+  uint tail_jobs;
+  uint tail_groups_y, tail_groups_z;  // 1, written by cull.comp
+  uint tail_leaves;                   // tail leaf buffer entries reserved (may pass the capacity)
 };
 
 // Pixel counts of one coverage comparison (pr_count.comp).

@@ -17,6 +17,8 @@ namespace {
 constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr uint32_t kTimestampCount = 6;  // frame start, cull end, draw end, frame end, pyramid start/end
+// Entries of the tail leaf buffer (64 MiB): forest5000's partly hidden trees need about 3 M.
+constexpr uint32_t kTailCapacity = 1u << 24;
 // A camera that moves or turns this much between two frames is a cut: the previous frame's
 // depth says nothing about the new view, so occlusion treats every tree as visible.
 constexpr float kCutDistance = 2.0f;    // meters
@@ -78,6 +80,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
     m.card_first_index = cf;
     m.card_index_count = uint32_t(tm.leaf_card.indices.size());
     m.card_vertex_offset = cv;
+    for (const Vertex& v : tm.leaf_card.vertices) m.card_radius = std::max(m.card_radius, glm::length(v.position));
     m.leaf_offset = uint32_t(leaves.size());
     m.leaf_count = tm.leaf_card.indices.empty() ? 0 : uint32_t(tm.leaves.size());
     for (const LeafPlacement& l : tm.leaves)
@@ -114,8 +117,8 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   // TRANSFER_DST: coverage batches update it between the renders of one command buffer.
   frame_ = vk::create_buffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              vk::MemoryUse::upload);
-  // Room for one branch and one leaf command per instance.
-  commands_ = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * 2 * std::max(instance_count_, 1u),
+  // Room for one branch and two leaf commands (prefix, occlusion tail) per instance.
+  commands_ = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * 3 * std::max(instance_count_, 1u),
                                 storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, vk::MemoryUse::device);
   counts_ = vk::create_buffer(ctx, sizeof(gpu::DrawCounts),
                               storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -166,12 +169,14 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
       {BINDING_DEPTH_PYRAMID, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {BINDING_HULL_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {BINDING_INSTANCE_STATE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_TAIL_JOBS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {BINDING_TAIL_LEAVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   slci.bindingCount = uint32_t(std::size(bindings));
   slci.pBindings = bindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &set_layout_));
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 11},
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 13},
                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
@@ -187,7 +192,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   const vk::Buffer* buffers[] = {&frame_,         &instances_,          &models_,        &leaves_,
                                  &commands_,      &counts_,             nullptr,         &prune_tables_,
                                  &coverage_reference_, &coverage_test_, &pr_counts_,     nullptr,
-                                 &hull_samples_,  &instance_states_};
+                                 &hull_samples_,  &instance_states_,   &tail_jobs_,     &tail_leaves_};
   const uint32_t binding_count = uint32_t(std::size(bindings));
   VkDescriptorBufferInfo infos[std::size(buffers)];
   VkWriteDescriptorSet writes[std::size(buffers)];
@@ -239,6 +244,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
 
 void Renderer::create_pipelines() {
   cull_ = vk::create_compute_pipeline(ctx_, layout_, "cull_comp");
+  tail_cull_ = vk::create_compute_pipeline(ctx_, layout_, "tail_cull_comp");
   pr_count_ = vk::create_compute_pipeline(ctx_, layout_, "pr_count_comp");
   vk::GraphicsPipelineDesc d;
   d.color_format = kColorFormat;
@@ -288,7 +294,7 @@ Renderer::~Renderer() {
   vkFreeCommandBuffers(dev, ctx_.command_pool, 1, &cmd_);
   vkDestroyQueryPool(dev, timestamps_, nullptr);
   destroy_gpu_stats(ctx_, pipeline_stats_);
-  for (VkPipeline p : {cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_, terrain_wire_, branches_wire_, leaves_wire_})
+  for (VkPipeline p : {cull_, tail_cull_, sky_, terrain_, branches_, leaves_pipeline_, pr_count_, terrain_wire_, branches_wire_, leaves_wire_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, pool_, nullptr);
@@ -305,6 +311,8 @@ Renderer::~Renderer() {
   vk::destroy_image(ctx_, depth_resolve_);
   vk::destroy_buffer(ctx_, hull_samples_);
   vk::destroy_buffer(ctx_, instance_states_);
+  vk::destroy_buffer(ctx_, tail_jobs_);
+  vk::destroy_buffer(ctx_, tail_leaves_);
   destroy_depth_pyramid(ctx_, pyramid_);
   vkDestroySampler(dev, pyramid_sampler_, nullptr);
 }
@@ -315,6 +323,14 @@ void Renderer::create_occlusion_resources(const std::vector<gpu::HullSample>& sa
   // Every instance starts fully visible, so the first frames draw exactly what the mode says.
   std::vector<gpu::InstanceState> states(std::max(instance_count_, 1u), gpu::InstanceState{1.0f, 1.0f, 0u, 0u});
   instance_states_ = vk::create_buffer_from<gpu::InstanceState>(ctx_, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, states);
+  // Per-leaf occlusion of partly hidden trees (tail_cull.comp): at most one job per instance,
+  // and room for every leaf of every instance up to kTailCapacity; a tree that finds no room
+  // left draws its whole prefix.
+  tail_jobs_ = vk::create_buffer(ctx_, sizeof(gpu::TailJob) * std::max(instance_count_, 1u), storage, vk::MemoryUse::device);
+  uint64_t all_leaves = 0;
+  for (const gpu::Instance& inst : scene_.instances) all_leaves += scene_.models[inst.model].leaves.size();
+  tail_capacity_ = uint32_t(std::clamp<uint64_t>(all_leaves, 1, kTailCapacity));
+  tail_leaves_ = vk::create_buffer(ctx_, sizeof(uint32_t) * tail_capacity_, storage, vk::MemoryUse::device);
   VkImageView source = depth_resolve_.image ? depth_resolve_.view : depth_.view;
   pyramid_ = create_depth_pyramid(ctx_, source, {width_, height_}, true);
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -377,6 +393,14 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
   if (instance_count_ > 0) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
     vkCmdDispatch(cmd, (instance_count_ + CULL_GROUP_SIZE - 1) / CULL_GROUP_SIZE, 1, 1);
+  }
+  if (instance_count_ > 0 && build_pyramid) {  // occlusion on: the tails of partly hidden trees
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tail_cull_);
+    vkCmdDispatchIndirect(cmd, counts_.buffer, offsetof(gpu::DrawCounts, tail_jobs));
   }
   end_gpu_stats(cmd, pipeline_stats_, StatsPass::cull);
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -465,7 +489,7 @@ void Renderer::record(VkCommandBuffer cmd, Output output, bool mask, bool build_
                                   instance_count_, stride);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframe_ ? leaves_wire_ : leaves_pipeline_);
     vkCmdDrawIndexedIndirectCount(cmd, commands_.buffer, VkDeviceSize(instance_count_) * stride, counts_.buffer,
-                                  offsetof(gpu::DrawCounts, leaf_draws), instance_count_, stride);
+                                  offsetof(gpu::DrawCounts, leaf_draws), 2 * instance_count_, stride);
   }
   vkCmdEndRendering(cmd);
   end_gpu_stats(cmd, pipeline_stats_, StatsPass::draw);
@@ -573,6 +597,7 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const FrameSetting
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u);
   fd.instance_count = instance_count_;
   fd.leaf_command_base = instance_count_;
+  fd.tail_capacity = tail_capacity_;
   return fd;
 }
 

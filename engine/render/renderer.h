@@ -145,6 +145,8 @@ class Renderer {
   vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
   vk::Image depth_resolve_;                // sample 0 of depth_ when samples_ > 1: the pyramid's source
   vk::Buffer hull_samples_, instance_states_;
+  vk::Buffer tail_jobs_, tail_leaves_;  // per-leaf occlusion of partly hidden trees (tail_cull.comp)
+  uint32_t tail_capacity_ = 1;
   DepthPyramid pyramid_;
   VkSampler pyramid_sampler_ = VK_NULL_HANDLE;
   // The frame the pyramid holds: its camera, and whether it is usable at all.
@@ -167,7 +169,7 @@ class Renderer {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
+  VkPipeline cull_ = VK_NULL_HANDLE, tail_cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
   VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE, pr_count_ = VK_NULL_HANDLE;
   VkPipeline terrain_wire_ = VK_NULL_HANDLE, branches_wire_ = VK_NULL_HANDLE, leaves_wire_ = VK_NULL_HANDLE;
   bool wireframe_ = false;  // this frame draws with the *_wire_ pipelines
