@@ -66,13 +66,19 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
     f.tree_triangles = ps.available ? (ps.ia_primitives > terrain_and_sky ? ps.ia_primitives - terrain_and_sky : 0)
                                     : f.stats.branch_triangles + uint64_t(f.stats.leaves_drawn) * card_triangles;
     if (options.pr_every && i % options.pr_every == 0) {
-      if (!reference) reference.emplace(ctx, scene, options.width, options.height, scene.desc.samples);
-      FrameSettings full;
-      full.mask = true;
+      std::map<uint32_t, FrameImage> own;
+      std::map<uint32_t, FrameImage>& references = options.references ? *options.references : own;
+      auto [at, missing] = references.try_emplace(f.frame);
+      if (missing) {
+        if (!reference) reference.emplace(ctx, scene, options.width, options.height, scene.desc.samples);
+        FrameSettings full;
+        full.mask = true;
+        reference->render(camera, &at->second, full);
+      }
+      const FrameImage& ref_image = at->second;
       FrameSettings test = settings;
       test.mask = true;
-      FrameImage ref_image, test_image;
-      reference->render(camera, &ref_image, full);
+      FrameImage test_image;
       renderer.render(camera, &test_image, test);
       f.pr = compare_coverage(ref_image, test_image, nullptr);
       f.has_pr = true;

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,9 @@ struct BenchPlayOptions {
   // (unrecorded) so its feedback has a history; none: all frames since the last played one.
   std::optional<uint32_t> occlusion_warmup;
   std::function<void(double)> progress;  // fraction of frames done
+  // Full-detail coverage per path frame, kept across the modes that play the same Scene: a
+  // reference of forest5000 on lavapipe takes minutes, and it is the same in every mode.
+  std::map<uint32_t, FrameImage>* references = nullptr;
 };
 
 // The frames of `path` at its fps from its first to its last key, every `every`-th, at most

@@ -66,6 +66,21 @@ TEST_F(BenchTest, PathPlaysDeterministicallyAndPrunes) {
   }
   EXPECT_DOUBLE_EQ(full[0].pr.quality(), 1.0);  // full detail against itself
   EXPECT_LT(opt[0].pr.quality(), 1.0);
+
+  // References shared by the modes of one run (forest bench): rendered once per PR frame,
+  // by the first mode, and every mode then measures what it measured alone.
+  std::map<uint32_t, FrameImage> references;
+  o.references = &references;
+  std::vector<BenchFrame> opt_shared = play_bench_path(ctx_, scene, path, *bench_mode("opt"), o);
+  EXPECT_EQ(references.size(), 2u);  // frames 0 and 4
+  std::vector<BenchFrame> full_shared = play_bench_path(ctx_, scene, path, *bench_mode("full"), o);
+  EXPECT_EQ(references.size(), 2u);
+  for (size_t i = 0; i < opt.size(); i += 2) {
+    EXPECT_EQ(opt_shared[i].pr.tp, opt[i].pr.tp) << i;
+    EXPECT_EQ(opt_shared[i].pr.fp, opt[i].pr.fp) << i;
+    EXPECT_EQ(opt_shared[i].pr.fn, opt[i].pr.fn) << i;
+    EXPECT_DOUBLE_EQ(full_shared[i].pr.quality(), 1.0) << i;
+  }
 }
 
 TEST_F(BenchTest, ThroughputProbeDrawsEveryTriangle) {
