@@ -23,6 +23,22 @@ std::string tick_label(float v) {
 }
 }  // namespace
 
+FittedText fit_text(std::string text, int size, int width) {
+  auto fits = [&](const std::string& t, int sz) {
+    OIIO::ROI r = OIIO::ImageBufAlgo::text_size(t, sz, kFont);
+    return !r.defined() || r.width() <= width;  // undefined: no font, nothing is drawn anyway
+  };
+  for (; size > 12; --size)
+    if (fits(text, size)) return {text, size};
+  while (text.size() > 3 && !fits(text, size)) {
+    text.resize(text.size() - 4);
+    while (!text.empty() && (text.back() & 0xC0) == 0x80) text.pop_back();  // whole UTF-8 characters
+    if (!text.empty() && (text.back() & 0x80)) text.pop_back();
+    text += "...";
+  }
+  return {text, size};
+}
+
 glm::vec2 padded_range(const std::vector<PlotSeries>& series, int axis, float pad) {
   float lo = 1e30f, hi = -1e30f;
   for (const PlotSeries& s : series)
@@ -52,7 +68,8 @@ void write_plot(const Plot& plot, const std::filesystem::path& path) {
     OIIO::ImageBufAlgo::render_text(img, 16, py(fy) + 5, tick_label(fy), 14, kFont, black);
   }
   OIIO::ImageBufAlgo::render_box(img, x0, y0, x1, y1, black);
-  OIIO::ImageBufAlgo::render_text(img, x0, 30, plot.title, 20, kFont, black);
+  FittedText title = fit_text(plot.title, 20, plot.width - x0 - 8);
+  OIIO::ImageBufAlgo::render_text(img, x0, 30, title.text, title.size, kFont, black);
   OIIO::ImageBufAlgo::render_text(img, (x0 + x1) / 2 - 40, plot.height - 18, plot.x_label, 16, kFont, black);
   OIIO::ImageBufAlgo::render_text(img, 8, y0 - 12, plot.y_label, 16, kFont, black);
 

@@ -27,6 +27,15 @@ struct Plot {
 // Autoscaled range covering every point with a margin (for plots whose range is data).
 glm::vec2 padded_range(const std::vector<PlotSeries>& series, int axis, float pad = 0.05f);
 
+// `text` at the largest font size from `size` down to 12 that fits in `width` pixels; still
+// too wide at 12 (a long device name or scene path in a bench title), it is cut at a whole
+// UTF-8 character and ends in "...". The title of write_plot goes through it.
+struct FittedText {
+  std::string text;
+  int size = 0;
+};
+FittedText fit_text(std::string text, int size, int width);
+
 // Writes atomically; InputError on failure.
 void write_plot(const Plot& plot, const std::filesystem::path& path);
 
