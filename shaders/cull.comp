@@ -84,8 +84,12 @@ void main() {
     if (k_occl < k) {
       uint tail = k - k_occl;
       uint base = atomicAdd(counts.tail_leaves, tail);
-      if (base + tail <= frame.tail_capacity) {  // else no room left: the whole prefix is drawn
-        uint j = atomicAdd(counts.tail_jobs, 1);
+      bool room = base + tail <= frame.tail_capacity;
+      uint j = room ? atomicAdd(counts.tail_jobs, 1) : frame.tail_job_capacity;
+      // A job past what one dispatch may run gives its slot back. Only slots at or past the
+      // capacity are given back, so no slot below it is ever handed out twice.
+      if (room && j >= frame.tail_job_capacity) atomicAdd(counts.tail_jobs, 0xffffffffu);
+      if (j < frame.tail_job_capacity) {  // else no room left: the whole prefix is drawn
         uint l = atomicAdd(counts.leaf_draws, 1);
         tail_jobs[j] = TailJob(frame.leaf_command_base + l, m.leaf_offset + k_occl, m.leaf_offset + k, base);
         commands[frame.leaf_command_base + l] = DrawCommand(m.card_index_count, 0, m.card_first_index,

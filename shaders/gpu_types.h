@@ -86,7 +86,8 @@ GPU_STRUCT FrameData {
   uint view_flags;         // VIEW_*
   uint occlusion;          // OCCLUSION_*
   uint tail_capacity;      // entries of the tail leaf buffer (BINDING_TAIL_LEAVES)
-  uint pad1, pad2;
+  uint tail_job_capacity;  // TailJobs per frame: instances, at most maxComputeWorkGroupCount[0]
+  uint pad2;
 };
 
 // One tree instance in the scene: placed once at load, never touched per frame by the CPU.

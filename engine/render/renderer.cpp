@@ -598,6 +598,9 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const FrameSetting
   fd.instance_count = instance_count_;
   fd.leaf_command_base = instance_count_;
   fd.tail_capacity = tail_capacity_;
+  // tail_cull.comp runs one workgroup per job, dispatched indirectly: never more than the
+  // device's group count (65535 guaranteed; a scene may hold 1 M trees).
+  fd.tail_job_capacity = std::min(instance_count_, ctx_.properties.limits.maxComputeWorkGroupCount[0]);
   return fd;
 }
 
