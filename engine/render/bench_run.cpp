@@ -45,6 +45,8 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
   uint64_t terrain_and_sky = scene.terrain.mesh().indices.size() / 3 + 1;  // sky: one full-screen triangle
   uint64_t card_triangles = scene.models.empty() ? 0 : scene.models[0].leaf_card.indices.size() / 3;
 
+  std::map<uint32_t, FrameImage> own_references;  // full-detail coverage per frame, unless the caller shares its own
+  std::map<uint32_t, FrameImage>& references = options.references ? *options.references : own_references;
   std::vector<BenchFrame> frames;
   for (size_t i = 0; i < options.frames.size(); ++i) {
     BenchFrame f;
@@ -66,8 +68,6 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
     f.tree_triangles = ps.available ? (ps.ia_primitives > terrain_and_sky ? ps.ia_primitives - terrain_and_sky : 0)
                                     : f.stats.branch_triangles + uint64_t(f.stats.leaves_drawn) * card_triangles;
     if (options.pr_every && i % options.pr_every == 0) {
-      std::map<uint32_t, FrameImage> own;
-      std::map<uint32_t, FrameImage>& references = options.references ? *options.references : own;
       auto [at, missing] = references.try_emplace(f.frame);
       if (missing) {
         if (!reference) reference.emplace(ctx, scene, options.width, options.height, scene.desc.samples);

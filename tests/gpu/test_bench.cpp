@@ -5,6 +5,7 @@
 #include "engine/render/bench_run.h"
 #include "engine/render/bench_throughput.h"
 #include "engine/scene/scene.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 
@@ -13,17 +14,8 @@ namespace {
 const std::filesystem::path kSource = FOREST_SOURCE_DIR;
 const std::filesystem::path kBinary = FOREST_BINARY_DIR;
 
-class BenchTest : public ::testing::Test {
+class BenchTest : public ValidatedGpuTest {
  protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
-  }
   Scene grove() {
     SceneBuildOptions build;
     build.use_cache = true;
@@ -31,7 +23,6 @@ class BenchTest : public ::testing::Test {
     build.ctx = &ctx_;
     return build_scene(load_scene_file(kSource / "tests/regression/grove.toml"), build);
   }
-  vk::Context ctx_;
 };
 
 }  // namespace

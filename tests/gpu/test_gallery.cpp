@@ -9,6 +9,7 @@
 
 #include "engine/render/gallery.h"
 #include "generators/common/input_error.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
@@ -17,23 +18,19 @@ namespace {
 
 const fs::path kSpecies = fs::path(FOREST_SOURCE_DIR) / "scenes" / "species";
 
-class GalleryTest : public ::testing::Test {
+class GalleryTest : public ValidatedGpuTest {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("forest_gallery_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
+    ValidatedGpuTest::SetUp();
   }
   void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
+    ValidatedGpuTest::TearDown();
     fs::remove_all(dir_);
   }
   fs::path dir_;
-  vk::Context ctx_;
 };
 
 // Pixels of the cell's picture that differ clearly from the background at the same row

@@ -10,6 +10,7 @@
 #include "engine/scene/scene.h"
 #include "generators/tree/leaf_texture.h"
 #include "generators/tree/mesher.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
 
@@ -48,17 +49,8 @@ float linear(uint8_t v) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-class LeafAppearance : public ::testing::Test {
+class LeafAppearance : public ValidatedGpuTest {
  protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
-  }
   Measure render(const TreeModel& model, uint32_t size, uint32_t samples) {
     Scene s;
     s.desc = parse_scene_text(R"(
@@ -92,7 +84,6 @@ height = 0.0
     m.mean /= float(n);
     return m;
   }
-  vk::Context ctx_;
 };
 
 }  // namespace
