@@ -4,9 +4,9 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-tools spirv-tools
+  glslang-tools spirv-tools spirv-cross
   libglfw3-dev libglm-dev libeigen3-dev libopenimageio-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libexpat1-dev
   libtinygltf-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libtbb-dev
