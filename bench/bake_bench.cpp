@@ -1,4 +1,4 @@
-// Bake timing and the rendering-priority comparison of seed 000 Table 7.4. Usage:
+// Bake timing and the rendering-priority comparison of Neubert 2012 Table 7.4. Usage:
 //   bake_bench [--model SPECIES.toml] [--old-model SPECIES.toml] [--compare SPECIES.toml]...
 //              [--views N] [--resolution PX] [--out DIR] [--skip-time] [--skip-compare]
 // 1. Bake time of --model (default bench/species/mig_a_50k.toml, ~51 K leaves) by stage:
@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/render/pr_bake.h"
-#include "generators/bake/hull.h"
-#include "generators/bake/priority.h"
-#include "generators/methods/methods.h"
+#include "engine/tools/bake/pr_bake.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/bake/priority/priority.h"
+#include "generators/species/registry.h"
 #include "prune_math.h"
 
 using namespace forest;
@@ -210,7 +210,7 @@ void table_7_4(vk::Context& ctx, const Options& o, const std::string& device) {
   std::filesystem::rename(csv_path + ".tmp", csv_path);
   {
     std::ofstream md(md_path + ".tmp");
-    md << "# Geometry saved vs Cook et al. at equal PR quality (seed 000 Table 7.4)\n\n"
+    md << "# Geometry saved vs Cook et al. at equal PR quality (Neubert 2012 Table 7.4)\n\n"
        << "Device: " << device << ". Coverage " << o.resolution << " px, " << o.views
        << " views, s grid of 12 per λ (searched). Cook et al. = random order, s = 1/λ at λ_Cook(d) = (1 − d)²; "
        << "each order needs the smallest λ whose Q(λ, s_opt(λ)) reaches that quality; saved = 1 − λ/λ_Cook over "

@@ -14,7 +14,7 @@
 
 #include "engine/render/renderer.h"
 #include "engine/scene/scene.h"
-#include "generators/methods/methods.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 

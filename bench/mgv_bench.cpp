@@ -1,4 +1,4 @@
-// MGV timing at the thesis' scale (seed 001 ch6.2.4: 150 K graph nodes, 4–8 K endpoints,
+// MGV timing at the thesis' scale (Xu 2015 ch6.2.4: 150 K graph nodes, 4–8 K endpoints,
 // 9.5 s per tree at 2.8 GHz: ~6 s Yao graph, 2 s paths). Usage:
 //   mgv_bench [SPECIES.toml] [--repeat N]
 // default species: scenes/species/mgv_n_hero.toml. Prints the time of each stage (best of
@@ -10,10 +10,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "generators/common/toml_reader.h"
-#include "generators/methods/graph_skeleton.h"
-#include "generators/methods/mgv_grow.h"
-#include "generators/methods/mgv_method.h"
+#include "generators/core/toml_reader.h"
+#include "generators/methods/common/graph_skeleton.h"
+#include "generators/methods/mgv/mgv_grow.h"
+#include "generators/methods/mgv/mgv_method.h"
 
 using namespace forest;
 using Clock = std::chrono::steady_clock;

@@ -1,4 +1,4 @@
-// Occlusion feedback benchmark (seed 000 §7.4): leaves and triangles that depth-buffer
+// Occlusion feedback benchmark (Neubert 2012 §7.4): leaves and triangles that depth-buffer
 // occlusion saves along a walkthrough of a generated forest, and the GPU time of the depth
 // pyramid + occlusion test as a fraction of the frame.
 //

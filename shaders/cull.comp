@@ -58,7 +58,7 @@ void main() {
   uint k = leaf_prefix(lambda, m.leaf_count);
   float shown_lambda = lambda;
 
-  // Occlusion feedback (seed 000 §7.4): λ_occl = λ(d) · o, o = max(f, 0.1) with hysteresis.
+  // Occlusion feedback (Neubert 2012 §7.4): λ_occl = λ(d) · o, o = max(f, 0.1) with hysteresis.
   if ((frame.occlusion & OCCLUSION_ON) != 0) {
     InstanceState st = instance_states[i];
     bool cut = (frame.occlusion & OCCLUSION_CUT) != 0;
@@ -74,9 +74,9 @@ void main() {
       atomicAdd(counts.triangles_saved, k * (m.card_index_count / 3) + m.lod_index_count[lod] / 3);
       return;
     }
-    // [ours] §7.4 draws the prefix of λ · o and nothing else, so the leaves of a partly hidden
+    // [ours] Neubert 2012 §7.4 draws the prefix of λ · o and nothing else, so the leaves of a partly hidden
     // tree that show through gaps in what hides it vanish with the rest. Here the prefix of
-    // λ · o is still drawn whole (the floor of §7.4 against a wrong estimate), and the rest of
+    // λ · o is still drawn whole (the floor of Neubert 2012 §7.4 against a wrong estimate), and the rest of
     // the mode's prefix, [λ·o·n, λ·n), is tested leaf by leaf: those the previous frame saw
     // are drawn too. What shows is then the picture of λ itself, so the leaf sizes, area
     // scale and transition band stay those of λ, and only hidden leaves are saved.

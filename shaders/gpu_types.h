@@ -31,12 +31,12 @@ using mat4 = glm::mat4;
 #define BINDING_COVERAGE_TEST 9
 #define BINDING_PR_COUNTS 10
 #define BINDING_DEPTH_PYRAMID 11   // previous frame's depth pyramid (farthest depth per texel)
-#define BINDING_HULL_SAMPLES 12    // HullSample per model point (occlusion test, §7.4)
+#define BINDING_HULL_SAMPLES 12    // HullSample per model point (occlusion test, Neubert 2012 §7.4)
 #define BINDING_INSTANCE_STATE 13  // InstanceState: occlusion feedback kept across frames
 #define BINDING_TAIL_JOBS 14       // TailJob per partly occluded tree (cull.comp -> tail_cull.comp)
 #define BINDING_TAIL_LEAVES 15     // leaf indices of the visible tails, in priority order
 
-// FrameData.prune_mode: how many leaves of each tree are drawn (seed 000 ch7).
+// FrameData.prune_mode: how many leaves of each tree are drawn (Neubert 2012 ch7).
 #define PRUNE_FULL 0   // every leaf, λ = 1
 #define PRUNE_COOK 1   // λ = (1 − d)², area scale s = 1/λ (Cook et al. 2007 as in ch7)
 #define PRUNE_OPT 2    // λ_opt(d) and s_opt(λ) from the model's baked PR tables
@@ -55,7 +55,7 @@ using mat4 = glm::mat4;
 #define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
 #define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
 
-// FrameData.occlusion: depth-buffer occlusion feedback (seed 000 §7.4).
+// FrameData.occlusion: depth-buffer occlusion feedback (Neubert 2012 §7.4).
 #define OCCLUSION_ON 1   // test hull samples against the previous frame's pyramid
 #define OCCLUSION_CUT 2  // no usable previous frame (first frame, camera cut): all count as visible
 

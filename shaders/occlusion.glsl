@@ -1,5 +1,5 @@
-// Occlusion test of one tree instance against the previous frame's depth pyramid (seed 000
-// §7.4), included by cull.comp after common.glsl.
+// Occlusion test of one tree instance against the previous frame's depth pyramid (Neubert 2012
+// Neubert 2012 §7.4), included by cull.comp after common.glsl.
 //
 // Reversed Z (infinite far plane): depth = near / view distance, 1 at the near plane and 0
 // infinitely far. A larger depth is nearer, and each pyramid texel keeps the MINIMUM depth of
@@ -15,7 +15,7 @@ layout(set = 0, binding = BINDING_HULL_SAMPLES, std430) readonly buffer HullSamp
 layout(set = 0, binding = BINDING_INSTANCE_STATE, std430) buffer InstanceStates { InstanceState instance_states[]; };
 
 // Visible in the previous frame? Points behind its camera or off its screen count as
-// visible (conservative, as §7.4 prescribes).
+// visible (conservative, as Neubert 2012 §7.4 prescribes).
 bool previous_frame_sees(vec3 world) {
   vec4 clip = frame.prev_view_proj * vec4(world, 1.0);
   if (clip.w <= frame.prev_camera.w) return true;

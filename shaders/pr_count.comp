@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Precision/Recall pixel counts (seed 000 §7.2.2): reference coverage (full detail) vs test
+// Precision/Recall pixel counts (Neubert 2012 §7.2.2): reference coverage (full detail) vs test
 // coverage (pruned), both RGBA8 frames copied into buffers; covered = red channel > 127.
 #include "gpu_types.h"
 

@@ -49,7 +49,7 @@ PRUNE_INLINE float transition_size(float i, float lambda_n, float t) {
   return clamp(u, 0.0f, 1.0f);
 }
 
-// Occlusion feedback (seed 000 §7.4): λ_occl = λ(d) · max(f, 0.1), f = visible fraction of
+// Occlusion feedback (Neubert 2012 §7.4): λ_occl = λ(d) · max(f, 0.1), f = visible fraction of
 // the hull samples, smoothed over frames by a hysteresis. The thesis gives no formula; ours:
 // the factor rises at once when f grows by more than a band or reaches 1 (a tree coming into
 // view never waits for its leaves), holds inside the band (a sample or two flickering in and

@@ -3,11 +3,11 @@
 
 #include "engine/app/commands.h"
 #include "engine/app/progress.h"
-#include "engine/render/pr_bake.h"
-#include "engine/render/tree_bake.h"
-#include "generators/bake/asset_io.h"
-#include "generators/bake/priority.h"
-#include "generators/common/input_error.h"
+#include "engine/tools/bake/pr_bake.h"
+#include "engine/tools/bake/tree_bake.h"
+#include "generators/asset/asset_io.h"
+#include "generators/bake/priority/priority.h"
+#include "generators/core/input_error.h"
 
 namespace forest::app {
 

@@ -3,9 +3,9 @@
 #include <cstdio>
 
 #include "engine/app/commands.h"
-#include "engine/render/image_io.h"
-#include "engine/render/pr_image.h"
-#include "generators/common/input_error.h"
+#include "engine/present/image_io.h"
+#include "engine/tools/report/pr_image.h"
+#include "generators/core/input_error.h"
 
 namespace forest::app {
 

@@ -2,8 +2,8 @@
 
 #include "engine/app/commands.h"
 #include "engine/app/progress.h"
-#include "engine/render/gallery.h"
-#include "engine/render/image_io.h"
+#include "engine/tools/gallery/gallery.h"
+#include "engine/present/image_io.h"
 
 namespace forest::app {
 

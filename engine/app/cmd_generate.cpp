@@ -4,11 +4,11 @@
 #include <sstream>
 
 #include "engine/app/commands.h"
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "engine/render/image_io.h"
-#include "generators/methods/magnetic_method.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "engine/present/image_io.h"
+#include "generators/methods/magnetic/magnetic_method.h"
+#include "generators/species/registry.h"
 
 namespace forest::app {
 

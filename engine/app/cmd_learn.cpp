@@ -1,11 +1,11 @@
-// `forest learn`: plantons and transitions from sample trees (seed 004) into a model file.
+// `forest learn`: plantons and transitions from sample trees (Wang 2006) into a model file.
 #include <chrono>
 #include <cstdio>
 
 #include "engine/app/commands.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/plantons_learn.h"
-#include "generators/methods/plantons_samples.h"
+#include "generators/core/input_error.h"
+#include "generators/methods/plantons/plantons_learn.h"
+#include "generators/methods/plantons/plantons_samples.h"
 
 namespace forest::app {
 

@@ -2,9 +2,9 @@
 #include <cstdio>
 
 #include "engine/app/commands.h"
-#include "engine/render/contact_sheet.h"
-#include "engine/render/image_io.h"
-#include "generators/bake/asset_io.h"
+#include "engine/tools/gallery/contact_sheet.h"
+#include "engine/present/image_io.h"
+#include "generators/asset/asset_io.h"
 
 namespace forest::app {
 

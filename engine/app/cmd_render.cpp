@@ -1,12 +1,13 @@
 #include <chrono>
 #include <cstdio>
 
+#include "engine/tools/bake/species_cache.h"
 #include "engine/app/commands.h"
-#include "engine/render/image_io.h"
+#include "engine/present/image_io.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/camera_path.h"
 #include "engine/scene/scene.h"
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 
 namespace forest::app {
 
@@ -53,10 +54,11 @@ int run_render(const RenderArgs& args) {
   } else if (args.frame || args.time) {
     throw InputError(args.scene, 0, args.frame ? "--frame" : "--time", "needs --path NAME");
   }
+  SpeciesCacheOptions cache;  // presets: generated and baked on first use, then loaded
+  cache.dir = args.cache;
+  cache.log = [](const std::string& line) { std::printf("%s\n", line.c_str()), std::fflush(stdout); };
   SceneBuildOptions build;
-  build.use_cache = true;  // presets: generated and baked on first use, then loaded
-  build.cache_dir = args.cache;
-  build.log = [](const std::string& line) { std::printf("%s\n", line.c_str()), std::fflush(stdout); };
+  build.species = cached_species_source(cache);
   Scene scene = build_scene(desc, build);
   if (scene.placement_shortfall > 0)
     std::fprintf(stderr, "forest: %s: placement: only %u of %u trees found room (min_spacing / radius / max_slope)\n",

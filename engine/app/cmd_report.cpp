@@ -4,9 +4,9 @@
 #include <map>
 
 #include "engine/app/commands.h"
-#include "engine/render/plot.h"
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
+#include "engine/tools/report/plot.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
 
 namespace forest::app {
 

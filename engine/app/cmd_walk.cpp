@@ -1,5 +1,5 @@
 // forest walk: the scene in a window. The renderer draws into its own image exactly as for
-// `forest render`; the present step (engine/render/present.h) copies it to the swapchain with
+// `forest render`; the present step (engine/present/present.h) copies it to the swapchain with
 // the HUD on top. Keys switch prune modes and views; WASD + mouse fly the camera.
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -11,16 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "engine/tools/bake/species_cache.h"
 #include "engine/app/commands.h"
-#include "engine/render/hud.h"
-#include "engine/render/image_io.h"
-#include "engine/render/present.h"
+#include "engine/present/hud.h"
+#include "engine/present/image_io.h"
+#include "engine/present/present.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/fly_camera.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/camera_path.h"
 #include "engine/vk/swapchain.h"
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 
 namespace forest::app {
 
@@ -205,9 +206,10 @@ int run_walk(const WalkArgs& args) {
   if (args.height) desc.height = *args.height;
   // Presets come generated and baked from the species cache, as in `forest render`, so the
   // opt mode ([3]) has its tables and a still frame matches `forest render` exactly.
+  SpeciesCacheOptions cache;
+  cache.log = [](const std::string& line) { std::printf("%s\n", line.c_str()), std::fflush(stdout); };
   SceneBuildOptions build;
-  build.use_cache = true;
-  build.log = [](const std::string& line) { std::printf("%s\n", line.c_str()), std::fflush(stdout); };
+  build.species = cached_species_source(cache);
   Scene scene = build_scene(desc, build);
   if (scene.placement_shortfall > 0)
     std::fprintf(stderr, "forest: %s: placement: only %u of %u trees found room (min_spacing / radius / max_slope)\n",

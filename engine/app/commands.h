@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/render/pr_bake.h"
+#include "engine/tools/bake/pr_bake.h"
 
 namespace forest::app {
 

@@ -6,7 +6,7 @@
 
 #include "engine/app/commands.h"
 #include "engine/vk/context.h"
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 
 using namespace forest;
 

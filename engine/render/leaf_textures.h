@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "generators/tree/tree_model.h"
+#include "generators/model/tree_model.h"
 
 namespace forest {
 

@@ -6,8 +6,8 @@
 #include <cstring>
 
 #include "engine/render/leaf_textures.h"
-#include "engine/render/occlusion_samples.h"
-#include "generators/bake/pr_tables.h"
+#include "engine/occlusion/occlusion_samples.h"
+#include "generators/asset/pr_tables.h"
 #include "engine/vk/pipelines.h"
 
 namespace forest {

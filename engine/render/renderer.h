@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/render/depth_pyramid.h"
+#include "engine/occlusion/depth_pyramid.h"
 #include "engine/render/gpu_stats.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
@@ -30,7 +30,7 @@ struct FrameSettings {
   // Triangle edges instead of filled triangles (terrain, bark, leaf cards); ignored when the
   // device lacks fillModeNonSolid (Renderer::has_wireframe()).
   bool wireframe = false;
-  // Depth-buffer occlusion feedback (seed 000 §7.4): λ scaled by each tree's visibility in
+  // Depth-buffer occlusion feedback (Neubert 2012 §7.4): λ scaled by each tree's visibility in
   // the previous frame, hidden trees culled. The first frame, and any frame after a camera
   // cut (this flag, or a jump detected from the camera), counts every tree as visible.
   bool occlusion = false;
@@ -62,7 +62,7 @@ struct FrameStats {
   PipelineStats cull_pipeline, draw_pipeline;  // pipeline-statistics queries per pass
 };
 
-// Precision/Recall of a test frame's coverage against a reference (seed 000 §7.2.2).
+// Precision/Recall of a test frame's coverage against a reference (Neubert 2012 §7.2.2).
 struct PrResult {
   uint64_t tp = 0, fp = 0, fn = 0;
   // With nothing retrieved, precision is taken as 1 (no false pixel was drawn).
@@ -117,7 +117,7 @@ class Renderer {
   enum class Output { none, image, reference, compare };
   FrameStats submit(const CameraDesc& camera, const FrameSettings& settings, Output output);
   void record(VkCommandBuffer cmd, Output output, bool mask, bool build_pyramid);
-  // Occlusion feedback (seed 000 §7.4): per-model samples, per-instance state, the pyramid.
+  // Occlusion feedback (Neubert 2012 §7.4): per-model samples, per-instance state, the pyramid.
   void create_occlusion_resources(const std::vector<gpu::HullSample>& samples);
   void record_pyramid(VkCommandBuffer cmd);
   bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;

@@ -5,7 +5,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 
 namespace forest {
 

@@ -7,12 +7,11 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "engine/scene/species_cache.h"
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/common/limits.h"
-#include "generators/common/rng.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/core/limits.h"
+#include "generators/core/rng.h"
+#include "generators/species/registry.h"
 
 namespace forest {
 
@@ -128,27 +127,15 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   for (const SpeciesDesc& s : desc.species) {
     if (!s.model.empty()) {
       scene.models.push_back(load_glb(s.model));
-    } else if (options.use_cache) {
-      std::filesystem::path dir = options.cache_dir.empty() ? default_cache_dir() : options.cache_dir;
-      CachedSpecies c = load_or_bake_species(s, desc.bake, dir, options.ctx);
-      (c.hit ? scene.cache_hits : scene.cache_misses)++;
-      if (options.log) {
-        char line[512];
-        if (c.hit)
-          std::snprintf(line, sizeof(line), "species %s: cached %s", s.preset.filename().c_str(), c.file.c_str());
-        else
-          std::snprintf(line, sizeof(line), "species %s: generated in %.1f s, baked in %.1f s -> %s",
-                        s.preset.filename().c_str(), c.generate_seconds, c.bake_seconds, c.file.c_str());
-        options.log(line);
-      }
-      scene.models.push_back(std::move(c.model));
+    } else if (options.species) {
+      scene.models.push_back(options.species(s, desc.bake));
     } else {
       GenerateOptions generate;
       generate.seed = s.seed;
       scene.models.push_back(generate_from_species(s.preset, generate));
     }
   }
-  // Every model's leaves share one GPU buffer: bound its size (generators/common/limits.h).
+  // Every model's leaves share one GPU buffer: bound its size (generators/core/limits.h).
   size_t leaves = 0;
   for (const TreeModel& m : scene.models) leaves += m.leaves.size();
   if (leaves > kMaxSceneLeaves)

@@ -8,23 +8,18 @@
 
 #include "engine/scene/scene_file.h"
 #include "engine/scene/terrain.h"
-#include "generators/tree/tree_model.h"
+#include "generators/model/tree_model.h"
 #include "gpu_types.h"
 
 namespace forest {
 
-namespace vk {
-struct Context;
-}
+// Where build_scene() gets the model of a [[species]] preset (one with `model = FILE` is
+// loaded from that file). The scene layer never bakes: a baked model comes from a source the
+// app layer hands in, e.g. the species cache of engine/tools/bake/species_cache.h.
+using SpeciesSource = std::function<TreeModel(const SpeciesDesc& species, const BakeDesc& bake)>;
 
-// How build_scene() turns [[species]] presets into models.
 struct SceneBuildOptions {
-  // false: generate presets in-process (unbaked, nothing written). true: generate + bake on
-  // first use, cached by content hash in cache_dir (see species_cache.h).
-  bool use_cache = false;
-  std::filesystem::path cache_dir;  // empty: default_cache_dir()
-  vk::Context* ctx = nullptr;       // device for bakes on a cache miss (nullptr: own context)
-  std::function<void(const std::string&)> log;  // one line per species loaded or baked
+  SpeciesSource species;  // empty: generate in-process, unbaked, nothing written
 };
 
 struct Scene {
@@ -33,7 +28,6 @@ struct Scene {
   std::vector<TreeModel> models;           // index = species index
   std::vector<gpu::Instance> instances;
   uint32_t placement_shortfall = 0;        // trees of placement.count that found no room
-  uint32_t cache_hits = 0, cache_misses = 0;  // species loaded from / added to the cache
 };
 
 // Generates (or loads) the species models and places the trees. InputError on bad files.

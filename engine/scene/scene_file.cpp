@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "generators/common/limits.h"
-#include "generators/common/toml_reader.h"
+#include "generators/core/limits.h"
+#include "generators/core/toml_reader.h"
 #include "gpu_types.h"
 
 namespace forest {

@@ -107,7 +107,7 @@ struct SceneDesc {
   float transition = 0.1f;        // Cook's transition band t: fraction of the prefix that shrinks
   bool lambda_view = false;       // [render] view = "lambda": color trees by detail level
   bool mask_view = false;         // [render] view = "mask": coverage only (white trees on black), for forest compare
-  bool occlusion = false;         // [render] occlusion: depth-buffer occlusion feedback (§7.4)
+  bool occlusion = false;         // [render] occlusion: depth-buffer occlusion feedback (Neubert 2012 §7.4)
   CameraDesc camera;
   SkyDesc sky;
   TerrainDesc terrain;

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "engine/scene/heightmap.h"
-#include "generators/common/rng.h"
+#include "generators/core/rng.h"
 
 namespace forest {
 

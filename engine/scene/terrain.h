@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "engine/scene/scene_file.h"
-#include "generators/tree/tree_model.h"
+#include "generators/model/tree_model.h"
 
 namespace forest {
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define FOREST_ASAN 1

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "generators/tree/tree_model.h"
+#include "generators/model/tree_model.h"
 
 namespace forest::vk {
 

@@ -1,4 +1,4 @@
-// Allometry of branchings (seed 000 ch5, "From graphs to models"): how radii and angles of a
+// Allometry of branchings (Neubert 2012 ch5, "From graphs to models"): how radii and angles of a
 // parent and its children relate. The pipe model assigns radii to a whole skeleton
 // (pipe_model.h); these are the per-fork rules it and the mesher are built on, available to
 // every generator.

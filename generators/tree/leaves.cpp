@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "generators/tree/frames.h"
+#include "generators/mesh/frames.h"
 
 namespace forest {
 

@@ -1,4 +1,4 @@
-// Leaf placement on a skeleton (seed 000 ch5 "Twigs and leaves"): along the terminal twigs in
+// Leaf placement on a skeleton (Neubert 2012 ch5 "Twigs and leaves"): along the terminal twigs in
 // a phyllotactic pattern and in a cluster at every tip, with random tilt, size and color.
 // This is part of the skeleton pass (its randomness lives in TreeGraph::leaves), so meshing
 // stays a pure function of the graph.
@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "generators/common/rng.h"
+#include "generators/core/rng.h"
 #include "generators/tree/tree_graph.h"
 
 namespace forest {

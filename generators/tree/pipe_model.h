@@ -1,4 +1,4 @@
-// Branch radii by the pipe model (da Vinci's rule, seed 000 ch5 eq. 5.1 generalized):
+// Branch radii by the pipe model (da Vinci's rule, Neubert 2012 ch5 eq. 5.1 generalized):
 // r_parent^Δ = Σ r_child^Δ, with every tip at tip_radius. Δ = 2 is da Vinci's area-preserving
 // rule, 2.49 Murray's, 3 the upper end seen in real trees (allometry.h has the constants and
 // the per-fork angle rules).

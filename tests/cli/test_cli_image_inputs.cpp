@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "engine/render/image_io.h"
+#include "engine/present/image_io.h"
 
 namespace fs = std::filesystem;
 

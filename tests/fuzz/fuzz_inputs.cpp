@@ -9,12 +9,12 @@
 #include <string>
 
 #include "engine/scene/scene_file.h"
-#include "generators/bake/asset_io.h"
-#include "generators/bake/pr_tables.h"
-#include "generators/common/input_error.h"
-#include "generators/common/toml_reader.h"
-#include "generators/methods/image_inputs.h"
-#include "generators/methods/strokes_io.h"
+#include "generators/asset/asset_io.h"
+#include "generators/asset/pr_tables.h"
+#include "generators/core/input_error.h"
+#include "generators/core/toml_reader.h"
+#include "generators/methods/common/image_inputs.h"
+#include "generators/methods/common/strokes_io.h"
 
 namespace forest::fuzz {
 

@@ -2,8 +2,9 @@
 // draws less than full detail along it, and the throughput probe draws what it claims.
 #include <gtest/gtest.h>
 
-#include "engine/render/bench_run.h"
-#include "engine/render/bench_throughput.h"
+#include "bench/bench_run.h"
+#include "bench/bench_throughput.h"
+#include "engine/tools/bake/species_cache.h"
 #include "engine/scene/scene.h"
 #include "tests/gpu/validated_gpu_test.h"
 
@@ -18,9 +19,7 @@ class BenchTest : public ValidatedGpuTest {
  protected:
   Scene grove() {
     SceneBuildOptions build;
-    build.use_cache = true;
-    build.cache_dir = kBinary / "test-cache";
-    build.ctx = &ctx_;
+    build.species = cached_species_source({kBinary / "test-cache", &ctx_, {}});
     return build_scene(load_scene_file(kSource / "tests/regression/grove.toml"), build);
   }
 };

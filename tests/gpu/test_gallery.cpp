@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "engine/render/gallery.h"
-#include "generators/common/input_error.h"
+#include "engine/tools/gallery/gallery.h"
+#include "generators/core/input_error.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;

@@ -7,8 +7,8 @@
 
 #include "engine/render/renderer.h"
 #include "engine/scene/scene.h"
-#include "generators/bake/pr_tables.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/pr_tables.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 

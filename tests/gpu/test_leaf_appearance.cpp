@@ -8,8 +8,8 @@
 #include "engine/render/leaf_textures.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/scene.h"
-#include "generators/tree/leaf_texture.h"
-#include "generators/tree/mesher.h"
+#include "generators/mesh/leaf_texture.h"
+#include "generators/mesh/mesher.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;

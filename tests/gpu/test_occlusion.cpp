@@ -1,4 +1,4 @@
-// Depth-buffer occlusion feedback (seed 000 §7.4) on the Vulkan device (lavapipe in CI),
+// Depth-buffer occlusion feedback (Neubert 2012 §7.4) on the Vulkan device (lavapipe in CI),
 // validation layer on: the depth pyramid's contents, Fig 7.13 (a tree hidden behind a row
 // is pruned, its visible neighbours are not), hidden pruning that does not show, camera cuts.
 #include <gtest/gtest.h>
@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cstring>
 
-#include "engine/render/depth_pyramid.h"
-#include "engine/render/pr_image.h"
+#include "engine/occlusion/depth_pyramid.h"
+#include "engine/tools/report/pr_image.h"
 #include "engine/render/renderer.h"
-#include "generators/bake/hull.h"
-#include "generators/methods/methods.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/species/registry.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
@@ -198,7 +198,7 @@ Scene hidden_pruning_scene(const TreeModel& m) {
 
 // The picture with occlusion feedback is the picture without it, as far as Precision/Recall
 // of the tree coverage can tell (Q >= 0.99), though it draws fewer leaves. The hidden trees
-// show through gaps in the row: §7.4's prefix of λ·o alone loses those leaves (Q was 0.9879);
+// show through gaps in the row: Neubert 2012 §7.4's prefix of λ·o alone loses those leaves (Q was 0.9879);
 // tail_cull.comp keeps every leaf of the rest of the prefix that the previous frame saw.
 TEST_F(OcclusionTest, HiddenPruningIsNotVisible) {
   Scene s = hidden_pruning_scene(broadleaf_with_hull());

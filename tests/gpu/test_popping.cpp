@@ -1,16 +1,16 @@
 // Popping while moving (issue: `forest walk`, "no visible popping"), measured:
 // along a walk at flying speed, the coverage pixels that flip when only the LOD
-// viewpoint moves by one frame (engine/render/popping.h). Lavapipe, validation
+// viewpoint moves by one frame (engine/tools/report/popping.h). Lavapipe, validation
 // layer on.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
-#include "engine/render/popping.h"
+#include "engine/tools/report/popping.h"
 #include "engine/render/renderer.h"
-#include "engine/render/tree_bake.h"
+#include "engine/tools/bake/tree_bake.h"
 #include "engine/scene/scene.h"
-#include "generators/methods/methods.h"
+#include "generators/species/registry.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;

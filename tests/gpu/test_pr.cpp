@@ -1,12 +1,12 @@
-// PR measurement on the GPU (seed 000 §7.2) and the pruning tables measured with it.
+// PR measurement on the GPU (Neubert 2012 §7.2) and the pruning tables measured with it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "engine/render/contact_sheet.h"
-#include "engine/render/pr_bake.h"
-#include "generators/methods/methods.h"
+#include "engine/tools/gallery/contact_sheet.h"
+#include "engine/tools/bake/pr_bake.h"
+#include "generators/species/registry.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;

@@ -7,11 +7,12 @@
 #include <filesystem>
 #include <map>
 
-#include "engine/render/bench_run.h"
-#include "engine/render/image_io.h"
-#include "engine/render/pr_image.h"
+#include "bench/bench_run.h"
+#include "engine/tools/bake/species_cache.h"
+#include "engine/present/image_io.h"
+#include "engine/tools/report/pr_image.h"
 #include "engine/scene/scene.h"
-#include "generators/common/toml_reader.h"
+#include "generators/core/toml_reader.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
@@ -61,9 +62,7 @@ TEST(Regression, PrunedViewsKeepTheirQuality) {
       ASSERT_TRUE(mode && c.mode != "full" && !mode->combined_priority) << "unknown or unsupported mode";
       if (!scenes.count(c.scene)) {
         SceneBuildOptions build;
-        build.use_cache = true;
-        build.cache_dir = kBinary / "test-cache";
-        build.ctx = &ctx;
+        build.species = cached_species_source({kBinary / "test-cache", &ctx, {}});
         scenes.emplace(c.scene, build_scene(load_scene_file(kRegression / c.scene), build));
       }
       const Scene& scene = scenes.at(c.scene);

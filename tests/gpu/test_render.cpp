@@ -6,10 +6,10 @@
 
 #include <cstring>
 
-#include "engine/render/contact_sheet.h"
+#include "engine/tools/gallery/contact_sheet.h"
 #include "engine/render/renderer.h"
-#include "generators/bake/pr_tables.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/pr_tables.h"
+#include "generators/species/registry.h"
 #include "prune_math.h"
 #include "engine/scene/scene.h"
 

@@ -7,11 +7,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include "engine/tools/bake/species_cache.h"
 #include "engine/render/renderer.h"
-#include "engine/render/tree_bake.h"
+#include "engine/tools/bake/tree_bake.h"
 #include "engine/scene/scene.h"
-#include "generators/bake/asset_io.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/species/registry.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
@@ -110,13 +111,12 @@ TEST_F(SceneGpuTest, SpeciesCacheSecondLoadHitsAndRendersIdentically) {
   fs::path cache = temp_dir("species_cache");
   SceneDesc desc = parse_scene_text(scene_text("[[tree]]\nspecies = 0\nx = 0\nz = 0\n"), "test.toml", kSource + "/scenes");
   desc.prune_mode = PRUNE_OPT;  // uses the baked tables
+  SpeciesCacheCounts first_counts, second_counts;
   SceneBuildOptions o;
-  o.use_cache = true;
-  o.cache_dir = cache;
-  o.ctx = &ctx_;
+  o.species = cached_species_source({cache, &ctx_, {}}, &first_counts);
   Scene first = build_scene(desc, o);
-  EXPECT_EQ(first.cache_misses, 1u);
-  EXPECT_EQ(first.cache_hits, 0u);
+  EXPECT_EQ(first_counts.misses, 1u);
+  EXPECT_EQ(first_counts.hits, 0u);
   ASSERT_TRUE(first.models[0].meta.value("baked", false)) << "a preset from the cache must be baked";
   std::vector<fs::path> files;
   for (auto& e : fs::directory_iterator(cache)) files.push_back(e.path());
@@ -124,9 +124,10 @@ TEST_F(SceneGpuTest, SpeciesCacheSecondLoadHitsAndRendersIdentically) {
   EXPECT_EQ(files[0].extension(), ".glb");
   auto written = fs::last_write_time(files[0]);
 
+  o.species = cached_species_source({cache, &ctx_, {}}, &second_counts);
   Scene second = build_scene(desc, o);
-  EXPECT_EQ(second.cache_hits, 1u);
-  EXPECT_EQ(second.cache_misses, 0u);
+  EXPECT_EQ(second_counts.hits, 1u);
+  EXPECT_EQ(second_counts.misses, 0u);
   EXPECT_EQ(fs::last_write_time(files[0]), written) << "a hit must not rewrite the asset";
   EXPECT_EQ(encode_glb(first.models[0]), encode_glb(second.models[0]));
   FrameImage a, b;
@@ -144,7 +145,7 @@ TEST_F(SceneGpuTest, SpeciesCacheSecondLoadHitsAndRendersIdentically) {
 }
 
 TEST_F(SceneGpuTest, OptMatchesCookQualityWithFewerLeaves) {
-  // seed 000 §7.2.5: λ_opt(d) is the smallest λ whose PR quality (with s_opt) reaches
+  // Neubert 2012 §7.2.5: λ_opt(d) is the smallest λ whose PR quality (with s_opt) reaches
   // Cook's quality at d. So on a forest view, opt must reach Cook's Q against the full
   // image while drawing fewer leaves.
   TreeModel m = broadleaf();

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "generators/tree/allometry.h"
-#include "generators/tree/lsystem.h"
+#include "generators/methods/lsystem/lsystem.h"
 #include "generators/tree/pipe_model.h"
 
 using namespace forest;

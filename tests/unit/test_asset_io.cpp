@@ -10,9 +10,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

@@ -1,11 +1,11 @@
 // Baked assets: hull mesh and PR tables survive the .glb round trip; malformed tables fail.
 #include <gtest/gtest.h>
 
-#include "generators/bake/asset_io.h"
-#include "generators/bake/hull.h"
-#include "generators/bake/pr_tables.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/asset/pr_tables.h"
+#include "generators/core/input_error.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 

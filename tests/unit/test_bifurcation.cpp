@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <map>
 
-#include "generators/methods/methods.h"
+#include "generators/species/registry.h"
 #include "generators/tree/allometry.h"
-#include "generators/tree/frames.h"
-#include "generators/tree/junction.h"
-#include "generators/tree/lsystem.h"
-#include "generators/tree/mesher.h"
+#include "generators/mesh/frames.h"
+#include "generators/mesh/junction.h"
+#include "generators/methods/lsystem/lsystem.h"
+#include "generators/mesh/mesher.h"
 #include "generators/tree/pipe_model.h"
 
 using namespace forest;

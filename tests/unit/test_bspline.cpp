@@ -1,9 +1,9 @@
-// Uniform cubic B-splines with clamped ends (seed 000 ch5 eq. 5.14) and their adaptive sampling.
+// Uniform cubic B-splines with clamped ends (Neubert 2012 ch5 eq. 5.14) and their adaptive sampling.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "generators/tree/bspline.h"
+#include "generators/mesh/bspline.h"
 
 using namespace forest;
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "generators/bake/asset_io.h"
-#include "generators/bake/hull.h"
-#include "generators/bake/priority.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/bake/priority/priority.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 

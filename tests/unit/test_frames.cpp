@@ -1,10 +1,10 @@
-// Rotation-minimizing frames by parallel transport (seed 000 ch5, Hanson 1995).
+// Rotation-minimizing frames by parallel transport (Neubert 2012 ch5, Hanson 1995).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "generators/tree/bspline.h"
-#include "generators/tree/frames.h"
+#include "generators/mesh/bspline.h"
+#include "generators/mesh/frames.h"
 
 using namespace forest;
 

@@ -1,4 +1,4 @@
-// Metaball hull (seed 000 §7.3.1): field, marching cubes, closedness, winding, containment,
+// Metaball hull (Neubert 2012 §7.3.1): field, marching cubes, closedness, winding, containment,
 // sample points.
 #include <gtest/gtest.h>
 
@@ -7,12 +7,12 @@
 #include <map>
 #include <utility>
 
-#include "generators/bake/hull.h"
-#include "generators/bake/hull_field.h"
-#include "generators/bake/hull_nearest.h"
-#include "generators/bake/marching_cubes.h"
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/bake/hull/hull_field.h"
+#include "generators/bake/hull/hull_nearest.h"
+#include "generators/bake/hull/marching_cubes.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
 
 using namespace forest;
 

@@ -8,9 +8,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "generators/common/input_error.h"
-#include "generators/methods/image_inputs.h"
-#include "generators/methods/image_synthetic.h"
+#include "generators/core/input_error.h"
+#include "generators/methods/common/image_inputs.h"
+#include "generators/methods/common/image_synthetic.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

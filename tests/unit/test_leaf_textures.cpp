@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/render/leaf_textures.h"
-#include "generators/tree/leaf_texture.h"
+#include "generators/mesh/leaf_texture.h"
 
 using namespace forest;
 

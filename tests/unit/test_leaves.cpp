@@ -4,13 +4,13 @@
 #include <cmath>
 #include <set>
 
-#include "generators/common/input_error.h"
-#include "generators/methods/methods.h"
-#include "generators/tree/frames.h"
-#include "generators/tree/leaf_texture.h"
+#include "generators/core/input_error.h"
+#include "generators/species/registry.h"
+#include "generators/mesh/frames.h"
+#include "generators/mesh/leaf_texture.h"
 #include "generators/tree/leaves.h"
-#include "generators/tree/lsystem.h"
-#include "generators/tree/mesher.h"
+#include "generators/methods/lsystem/lsystem.h"
+#include "generators/mesh/mesher.h"
 
 using namespace forest;
 

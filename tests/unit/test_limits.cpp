@@ -1,4 +1,4 @@
-// Limits on counts that user input controls (generators/common/limits.h): each absurd count
+// Limits on counts that user input controls (generators/core/limits.h): each absurd count
 // is one InputError naming file and key, raised before the memory is allocated. Vulkan
 // failures name their VkResult.
 #include <gtest/gtest.h>
@@ -14,11 +14,11 @@
 
 #include "engine/scene/scene_file.h"
 #include "engine/vk/context.h"
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/common/limits.h"
-#include "generators/methods/image_inputs.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/core/limits.h"
+#include "generators/methods/common/image_inputs.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 
 #include <meshoptimizer.h>
 
-#include "generators/methods/methods.h"
-#include "generators/tree/mesh_lod.h"
-#include "generators/tree/mesher.h"
+#include "generators/species/registry.h"
+#include "generators/mesh/mesh_lod.h"
+#include "generators/mesh/mesher.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

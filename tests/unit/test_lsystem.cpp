@@ -7,9 +7,9 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 #include "generators/tree/leaves.h"
-#include "generators/tree/lsystem.h"
+#include "generators/methods/lsystem/lsystem.h"
 #include "generators/tree/pipe_model.h"
 
 using namespace forest;

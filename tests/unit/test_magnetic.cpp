@@ -1,4 +1,4 @@
-// Method `magnetic` (seed 001 ch7): Lorentz-force curves, space filling, relief model, SVG.
+// Method `magnetic` (Xu 2015 ch7): Lorentz-force curves, space filling, relief model, SVG.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/magnetic_curves.h"
-#include "generators/methods/magnetic_method.h"
-#include "generators/methods/methods.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/methods/magnetic/magnetic_curves.h"
+#include "generators/methods/magnetic/magnetic_method.h"
+#include "generators/species/registry.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "generators/tree/frames.h"
+#include "generators/mesh/frames.h"
 #include "generators/tree/leaves.h"
-#include "generators/tree/lsystem.h"
-#include "generators/tree/mesher.h"
+#include "generators/methods/lsystem/lsystem.h"
+#include "generators/mesh/mesher.h"
 #include "generators/tree/pipe_model.h"
 
 using namespace forest;

@@ -1,4 +1,4 @@
-// The least-cost-path substrate (Yao-8 graph, Dijkstra) and method `mgv` (seed 001 ch5).
+// The least-cost-path substrate (Yao-8 graph, Dijkstra) and method `mgv` (Xu 2015 ch5).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,16 +7,16 @@
 #include <limits>
 #include <sstream>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
-#include "generators/methods/graph_dijkstra.h"
-#include "generators/methods/graph_poisson.h"
-#include "generators/methods/graph_skeleton.h"
-#include "generators/methods/graph_yao.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/mgv_grow.h"
-#include "generators/methods/mgv_method.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
+#include "generators/methods/common/graph_dijkstra.h"
+#include "generators/methods/common/graph_poisson.h"
+#include "generators/methods/common/graph_skeleton.h"
+#include "generators/methods/common/graph_yao.h"
+#include "generators/species/registry.h"
+#include "generators/methods/mgv/mgv_grow.h"
+#include "generators/methods/mgv/mgv_method.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

@@ -1,16 +1,16 @@
-// Method `mig` (seed 001 ch4): iterated graphs.
+// Method `mig` (Xu 2015 ch4): iterated graphs.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/graph_skeleton.h"
-#include "generators/methods/graph_volume.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/mig_method.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/methods/common/graph_skeleton.h"
+#include "generators/methods/common/graph_volume.h"
+#include "generators/species/registry.h"
+#include "generators/methods/mig/mig_method.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

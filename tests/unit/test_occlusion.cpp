@@ -1,14 +1,14 @@
-// Occlusion feedback on the CPU side (seed 000 §7.4): the hysteresis shared with cull.comp,
+// Occlusion feedback on the CPU side (Neubert 2012 §7.4): the hysteresis shared with cull.comp,
 // the per-model sample points, and the scene-file switch.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "engine/render/occlusion_samples.h"
+#include "engine/occlusion/occlusion_samples.h"
 #include "engine/scene/scene_file.h"
-#include "generators/bake/hull.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/methods.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/core/input_error.h"
+#include "generators/species/registry.h"
 #include "prune_math.h"
 
 using namespace forest;

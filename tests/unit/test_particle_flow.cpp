@@ -1,4 +1,4 @@
-// Particle flow (seed 000 ch3): density volume by least squares, seeding, direction field,
+// Particle flow (Neubert 2012 ch3): density volume by least squares, seeding, direction field,
 // integrators, particle tracing into one rooted tree, determinism and bad inputs.
 #include <gtest/gtest.h>
 
@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
-#include "generators/methods/image_synthetic.h"
-#include "generators/methods/image_tree_util.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/particle_flow_sim.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
+#include "generators/methods/common/image_synthetic.h"
+#include "generators/methods/common/image_tree_util.h"
+#include "generators/species/registry.h"
+#include "generators/methods/particle_flow/particle_flow_sim.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

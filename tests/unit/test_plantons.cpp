@@ -1,4 +1,4 @@
-// Method plantons (seed 004): organs, distance, learning (k-means, EM, tree max-product),
+// Method plantons (Wang 2006): organs, distance, learning (k-means, EM, tree max-product),
 // synthesis, the expected-size analysis and the model file.
 #include <gtest/gtest.h>
 
@@ -6,13 +6,13 @@
 #include <cmath>
 #include <functional>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/plantons_learn.h"
-#include "generators/methods/plantons_samples.h"
-#include "generators/methods/plantons_synth.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
+#include "generators/species/registry.h"
+#include "generators/methods/plantons/plantons_learn.h"
+#include "generators/methods/plantons/plantons_samples.h"
+#include "generators/methods/plantons/plantons_synth.h"
 
 using namespace forest;
 

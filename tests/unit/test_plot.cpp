@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/render/image_io.h"
-#include "engine/render/plot.h"
+#include "engine/present/image_io.h"
+#include "engine/tools/report/plot.h"
 
 using namespace forest;
 

@@ -2,7 +2,7 @@
 // against slivers.
 #include <gtest/gtest.h>
 
-#include "engine/render/popping.h"
+#include "engine/tools/report/popping.h"
 
 using namespace forest;
 

@@ -1,8 +1,8 @@
 // compare_coverage: tp/fp/fn counting and the Fig 7.1 colours of `forest compare`.
 #include <gtest/gtest.h>
 
-#include "engine/render/pr_image.h"
-#include "generators/common/input_error.h"
+#include "engine/tools/report/pr_image.h"
+#include "generators/core/input_error.h"
 
 using namespace forest;
 

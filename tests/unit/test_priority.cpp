@@ -1,14 +1,14 @@
-// Leaf rendering priority (seed 000 §7.3): random, density, orientation, combined orders.
+// Leaf rendering priority (Neubert 2012 §7.3): random, density, orientation, combined orders.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "generators/bake/hull.h"
-#include "generators/bake/priority.h"
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
+#include "generators/bake/hull/hull.h"
+#include "generators/bake/priority/priority.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
 
 using namespace forest;
 

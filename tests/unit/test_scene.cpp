@@ -5,7 +5,7 @@
 
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
-#include "generators/common/input_error.h"
+#include "generators/core/input_error.h"
 
 using namespace forest;
 

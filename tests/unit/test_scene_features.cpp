@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "engine/render/image_io.h"
+#include "engine/present/image_io.h"
 #include "engine/scene/camera_path.h"
 #include "engine/scene/heightmap.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/species_cache.h"
-#include "generators/common/input_error.h"
+#include "engine/tools/bake/species_cache.h"
+#include "generators/core/input_error.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

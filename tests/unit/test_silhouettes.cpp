@@ -1,4 +1,4 @@
-// Method silhouettes (seed 002): bumps, BAF, Hermite branches, span transfer, sub-silhouettes,
+// Method silhouettes (Wither 2009): bumps, BAF, Hermite branches, span transfer, sub-silhouettes,
 // fill-in, Gibbs placement, generation.
 #include <gtest/gtest.h>
 
@@ -6,13 +6,13 @@
 #include <cmath>
 #include <filesystem>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/silhouettes_method.h"
-#include "generators/methods/silhouettes_placement.h"
-#include "generators/methods/silhouettes_style.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
+#include "generators/species/registry.h"
+#include "generators/methods/silhouettes/silhouettes_method.h"
+#include "generators/methods/silhouettes/silhouettes_placement.h"
+#include "generators/methods/silhouettes/silhouettes_style.h"
 
 using namespace forest;
 

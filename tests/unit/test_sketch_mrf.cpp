@@ -1,4 +1,4 @@
-// Method sketch-mrf (seed 000 ch4): segments, factor graph, ICM, EM, templates, propagation.
+// Method sketch-mrf (Neubert 2012 ch4): segments, factor graph, ICM, EM, templates, propagation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,15 +7,15 @@
 #include <fstream>
 #include <set>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/common/rng.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/sketch_mrf_inference.h"
-#include "generators/methods/sketch_mrf_method.h"
-#include "generators/methods/sketch_propagation.h"
-#include "generators/methods/sketch_templates.h"
-#include "generators/methods/strokes_io.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/core/rng.h"
+#include "generators/species/registry.h"
+#include "generators/methods/sketch_mrf/sketch_mrf_inference.h"
+#include "generators/methods/sketch_mrf/sketch_mrf_method.h"
+#include "generators/methods/sketch_mrf/sketch_propagation.h"
+#include "generators/methods/sketch_mrf/sketch_templates.h"
+#include "generators/methods/common/strokes_io.h"
 
 using namespace forest;
 

@@ -7,10 +7,10 @@
 #include <set>
 #include <sstream>
 
-#include "generators/bake/asset_io.h"
-#include "generators/common/input_error.h"
-#include "generators/methods/methods.h"
-#include "generators/tree/mesher.h"
+#include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
+#include "generators/species/registry.h"
+#include "generators/mesh/mesher.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
@@ -67,7 +67,7 @@ TEST(Species, MethodIdsAndDefaultText) {
   EXPECT_EQ(m.meta["node_count"], 24385);  // 24384 F after 7 iterations, plus the root
 }
 
-// The species library (README): named after seed 000's models and more, spanning methods
+// The species library (README): named after Neubert 2012's models and more, spanning methods
 // and habits. Forest-sized: LOD0 <= 10 K branch triangles and <= 5 K leaves.
 const char* const kLibrary[] = {"picea_abies",    "pinus_sylvestris", "larix_decidua",
                                 "betula_pendula", "fagus_sylvatica",  "salix_alba",

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "generators/common/input_error.h"
-#include "generators/methods/strokes_io.h"
+#include "generators/core/input_error.h"
+#include "generators/methods/common/strokes_io.h"
 
 using namespace forest;
 

@@ -1,4 +1,4 @@
-// Visual hull (seed 003): exact hull of pixel masks, reprojection IoU, volume monotonicity,
+// Visual hull (Shlyakhter 2001): exact hull of pixel masks, reprojection IoU, volume monotonicity,
 // skeleton, growth inside the hull, determinism and bad inputs.
 #include <gtest/gtest.h>
 
@@ -9,13 +9,13 @@
 #include <limits>
 #include <set>
 
-#include "generators/common/input_error.h"
-#include "generators/common/toml_reader.h"
-#include "generators/methods/image_synthetic.h"
-#include "generators/methods/image_tree_util.h"
-#include "generators/methods/methods.h"
-#include "generators/methods/visual_hull_growth.h"
-#include "generators/methods/voxel_thinning.h"
+#include "generators/core/input_error.h"
+#include "generators/core/toml_reader.h"
+#include "generators/methods/common/image_synthetic.h"
+#include "generators/methods/common/image_tree_util.h"
+#include "generators/species/registry.h"
+#include "generators/methods/visual_hull/visual_hull_growth.h"
+#include "generators/methods/visual_hull/voxel_thinning.h"
 
 using namespace forest;
 namespace fs = std::filesystem;

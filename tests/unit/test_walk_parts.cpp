@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "engine/render/hud.h"
+#include "engine/present/hud.h"
 #include "engine/scene/fly_camera.h"
 
 using namespace forest;

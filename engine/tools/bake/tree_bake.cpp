@@ -1,0 +1,49 @@
+#include "engine/tools/bake/tree_bake.h"
+
+#include <chrono>
+
+#include "generators/bake/hull/hull.h"
+#include "generators/bake/priority/priority.h"
+#include "generators/core/input_error.h"
+
+namespace forest {
+
+TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBakeSettings& settings) {
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  std::optional<Priority> priority = parse_priority(settings.priority);
+  if (!priority)
+    throw InputError("--priority", 0, "", "unknown priority '" + settings.priority + "' (random, density, orientation, combined, layered)");
+  uint64_t seed = settings.seed ? *settings.seed : model.meta.value("seed", uint64_t(1));
+
+  HullParams hp;
+  hp.seed = seed;
+  Hull hull = build_hull(model.leaves, plant_height(model), hp);
+  attach_hull(model, hull);
+  apply_priority(model, hull, *priority, seed);
+  auto t_hull = clock::now();
+
+  uint32_t messages_before = ctx.validation_messages.load();
+  PrBakeOptions po;
+  po.resolution = settings.resolution;
+  po.views = settings.views;
+  po.progress = settings.progress;
+  PrMeasurement pm = measure_pr_tables(ctx, model, po);
+  if (ctx.validation_messages > messages_before)
+    throw vk::VkFailure(std::to_string(ctx.validation_messages.load() - messages_before) +
+                        " Vulkan validation message(s) during bake");
+  pm.tables.priority = settings.priority;
+  model.meta["pr_tables"] = to_json(pm.tables);
+  nlohmann::json samples = nlohmann::json::array();  // the PR diagram behind the tables
+  for (const PrSample& ps : pm.samples) samples.push_back({ps.lambda, ps.scale, ps.pr.precision(), ps.pr.recall()});
+  model.meta["pr_samples"] = samples;
+  model.meta["baked"] = true;
+  TreeBakeResult r;
+  r.measurement = std::move(pm);
+  r.hull_seconds = std::chrono::duration<double>(t_hull - t0).count();
+  r.pr_seconds = std::chrono::duration<double>(clock::now() - t_hull).count();
+  r.hull_triangles = hull.mesh.indices.size() / 3;
+  return r;
+}
+
+}  // namespace forest

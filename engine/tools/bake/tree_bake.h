@@ -1,0 +1,31 @@
+// Bake a generated model for run-time pruning: metaball hull, priority-sorted leaves and
+// PR-measured s_opt / λ_opt tables (stored in model.meta). Used by `forest bake`,
+// `forest generate --bake` and the species cache.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "engine/tools/bake/pr_bake.h"
+
+namespace forest {
+
+struct TreeBakeSettings {
+  std::string priority = "combined";  // random, density, orientation, combined, layered
+  std::optional<uint64_t> seed;       // default: the model's seed
+  uint32_t views = 6;
+  uint32_t resolution = 256;
+  std::function<void(double)> progress;  // fraction of the PR measurement done
+};
+
+struct TreeBakeResult {
+  PrMeasurement measurement;
+  double hull_seconds = 0, pr_seconds = 0;
+  size_t hull_triangles = 0;
+};
+
+// InputError for an unknown priority; VkFailure when the validation layer reports anything.
+TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBakeSettings& settings);
+
+}  // namespace forest

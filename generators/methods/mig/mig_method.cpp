@@ -1,0 +1,310 @@
+// Species keys of method "mig" (all optional unless marked; ranges are checked):
+//   name, seed, nodes (K), spacing (d, m; 0 = from K), reach (longest Yao edge / d), root
+//   ([x, y, z]), shell (d_e, m), subgraph_nodes (k), subgraph_radius (r, m), shrink (a),
+//   [[volume]] tables (see graph_volume.h; required), [[level]] tables (required, level 1
+//   first): b, alpha (deg), rotate (deg, + = down), direction ([x, y, z]), around_all;
+//   and the skeleton style keys of graph_skeleton.h.
+#include "generators/methods/mig/mig_method.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "generators/core/rng.h"
+#include "generators/methods/common/graph_dijkstra.h"
+#include "generators/methods/common/graph_poisson.h"
+#include "generators/methods/common/graph_skeleton.h"
+#include "generators/methods/common/graph_yao.h"
+
+namespace forest {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr double kMaxGraphNodes = 4e6;    // all graphs of one tree together
+constexpr double kMaxEndpoints = 200000;
+
+struct Endpoint {
+  uint32_t node = 0;       // index in the tree
+  glm::vec3 position{0.0f};
+  glm::vec3 graph_root{0.0f};  // R of the graph it was chosen in
+};
+
+// Rotation of v about unit axis by angle (Rodrigues).
+glm::vec3 rotate_about(glm::vec3 v, glm::vec3 axis, float angle) {
+  float c = std::cos(angle), s = std::sin(angle);
+  return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0f - c);
+}
+
+// Tilts v away from +Y by `angle` about the horizontal axis up × v (+ = down).
+glm::vec3 rotate_down(glm::vec3 v, float angle) {
+  glm::vec3 axis = glm::cross(glm::vec3(0, 1, 0), v);
+  if (glm::length(axis) < 1e-6f) axis = glm::vec3(0, 0, -1);
+  return glm::normalize(rotate_about(v, glm::normalize(axis), angle));
+}
+
+// Graph of `root` (node 0) and up to `count` Poisson nodes inside, spacing d.
+YaoGraph make_graph(glm::vec3 root, const InsideFn& inside, Box box, size_t count, float d,
+                    float reach, Rng& rng) {
+  std::vector<glm::vec3> pts = poisson_disc(inside, box, count, d, rng, 40 * count + 1000);
+  std::vector<glm::vec3> nodes{root};
+  nodes.reserve(pts.size() + 1);
+  for (glm::vec3 p : pts)
+    if (glm::length(p - root) >= d) nodes.push_back(p);
+  return build_yao8(std::move(nodes), reach * d);
+}
+
+// Picks up to b distinct candidates (partial Fisher–Yates).
+std::vector<uint32_t> pick(std::vector<uint32_t> candidates, size_t b, Rng& rng) {
+  size_t m = std::min(b, candidates.size());
+  for (size_t i = 0; i < m; ++i) {
+    size_t j = i + size_t(rng.uniform() * double(candidates.size() - i));
+    std::swap(candidates[i], candidates[std::min(j, candidates.size() - 1)]);
+  }
+  candidates.resize(m);
+  return candidates;
+}
+
+// Adds the least-cost path endpoint -> (first node already in the tree) to the tree, top down.
+uint32_t add_path(const YaoGraph& g, const ShortestPaths& sp, uint32_t endpoint,
+                  std::vector<int32_t>& to_tree, TreeGraph& tree, uint32_t order) {
+  std::vector<uint32_t> chain;
+  uint32_t v = endpoint;
+  while (to_tree[v] < 0) {  // ends at the graph's root, mapped before any path is added
+    chain.push_back(v);
+    v = uint32_t(sp.parent[v]);
+  }
+  for (size_t i = chain.size(); i-- > 0;) {
+    TreeNode node;
+    node.position = g.positions[chain[i]];
+    node.parent = to_tree[v];
+    node.order = order;
+    to_tree[chain[i]] = int32_t(tree.nodes.size());
+    tree.nodes.push_back(node);
+    v = chain[i];
+  }
+  return uint32_t(to_tree[endpoint]);
+}
+
+}  // namespace
+
+TreeGraph grow_mig(const MigParams& P, uint64_t seed, MigStats* stats) {
+  MigStats st;
+  TreeGraph tree;
+  TreeNode root;
+  root.position = P.root;
+  tree.nodes.push_back(root);
+
+  // ---- level 1: the user's volume ----
+  std::vector<Shape> crown;
+  for (const Shape& s : P.volume)
+    if (s.endpoints) crown.push_back(s);
+  Rng rng(seed, 1);
+  Box box = volume_bounds(P.volume);
+  InsideFn inside = [&](glm::vec3 p) { return volume_contains(P.volume, p); };
+  float d = P.spacing > 0.0f ? P.spacing : spacing_for_count(estimate_volume(inside, box, rng), P.nodes);
+  if (!(d > 0.0f)) throw InputError("mig: the level-1 volume is empty");
+  YaoGraph g = make_graph(P.root, inside, box, P.nodes, d, P.reach, rng);
+  st.graph_nodes += g.size();
+  uint32_t source = 0;
+  ShortestPaths sp = dijkstra_lengths(g, std::span<const uint32_t>(&source, 1));
+  std::vector<uint32_t> candidates;
+  for (uint32_t v = 1; v < g.size(); ++v) {
+    glm::vec3 p = g.positions[v];
+    if (!volume_contains(crown, p)) continue;
+    if (P.shell > 0.0f && !in_surface_shell(crown, p, P.shell)) continue;
+    if (sp.reached(v))
+      candidates.push_back(v);
+    else
+      ++st.unreachable;
+  }
+  std::vector<int32_t> to_tree(g.size(), -1);
+  to_tree[0] = 0;
+  std::vector<Endpoint> prev;
+  for (uint32_t e : pick(candidates, size_t(P.levels.at(0).branching), rng))
+    prev.push_back({add_path(g, sp, e, to_tree, tree, 0), g.positions[e], P.root});
+  std::vector<Endpoint> all = prev;
+
+  // ---- levels 2..L: cone-shaped subgraphs around earlier endpoints ----
+  float r = P.subgraph_radius;
+  for (size_t level = 1; level < P.levels.size(); ++level) {
+    const MigLevel& L = P.levels[level];
+    const std::vector<Endpoint> around = L.around_all ? all : prev;
+    std::vector<Endpoint> next;
+    const double cone_volume = 2.0 / 3.0 * kPi * double(r) * r * r * (1.0 - std::cos(double(L.alpha)));
+    const float ds = spacing_for_count(cone_volume, P.subgraph_nodes);
+    for (size_t i = 0; i < around.size(); ++i) {
+      const Endpoint& e = around[i];
+      glm::vec3 vg = e.position - e.graph_root;
+      vg = L.direction ? glm::normalize(*L.direction)
+                       : (glm::length(vg) > 1e-6f ? glm::normalize(vg) : glm::vec3(0, 1, 0));
+      if (L.rotate != 0.0f) vg = rotate_down(vg, L.rotate);
+      Shape cone;
+      cone.kind = ShapeKind::SpherePortion;
+      cone.center = e.position;
+      cone.axis = vg;
+      cone.radius = r;
+      cone.angle = L.alpha;
+      Rng sub_rng(hash64(seed, level, i), 2);
+      YaoGraph sg = make_graph(
+          e.position, [&](glm::vec3 p) { return shape_contains(cone, p); }, shape_bounds(cone),
+          P.subgraph_nodes, ds, P.reach, sub_rng);
+      st.graph_nodes += sg.size();
+      ++st.subgraphs;
+      ShortestPaths ssp = dijkstra_lengths(sg, std::span<const uint32_t>(&source, 1));
+      std::vector<uint32_t> reached;
+      for (uint32_t v = 1; v < sg.size(); ++v) {
+        if (ssp.reached(v))
+          reached.push_back(v);
+        else
+          ++st.unreachable;
+      }
+      std::vector<int32_t> sub_to_tree(sg.size(), -1);
+      sub_to_tree[0] = int32_t(e.node);
+      for (uint32_t v : pick(reached, size_t(L.branching), sub_rng))
+        next.push_back({add_path(sg, ssp, v, sub_to_tree, tree, uint32_t(level)), sg.positions[v],
+                        e.position});
+    }
+    all.insert(all.end(), next.begin(), next.end());
+    prev = std::move(next);
+    r *= P.shrink;
+  }
+  st.endpoints = all.size();
+  if (stats) *stats = st;
+  return tree;
+}
+
+namespace {
+
+MigParams read_params(const TomlTable& t) {
+  MigParams P;
+  P.nodes = size_t(t.integer("nodes", 3000, 10, 2000000));
+  P.spacing = float(t.number("spacing", 0.0, 0.0, 100.0));
+  P.reach = float(t.number("reach", 4.0, 1.5, 20.0));
+  P.root = t.vec3("root", glm::vec3(0.0f), -1000.0, 1000.0);
+  P.shell = float(t.number("shell", 0.0, 0.0, 1000.0));
+  P.subgraph_nodes = size_t(t.integer("subgraph_nodes", 150, 4, 100000));
+  P.subgraph_radius = float(t.number("subgraph_radius", 2.0, 1e-3, 1000.0));
+  P.shrink = float(t.number("shrink", 0.7, 0.05, 2.0));
+  for (const TomlTable& v : t.tables("volume")) P.volume.push_back(read_shape(v));
+  if (P.volume.empty()) t.fail("volume", "at least one [[volume]] table is required");
+  bool any_endpoints = false;
+  for (const Shape& s : P.volume) any_endpoints |= s.endpoints;
+  if (!any_endpoints) t.fail("volume", "no [[volume]] may hold endpoints (all have endpoints = false)");
+  for (const TomlTable& l : t.tables("level")) {
+    l.check_keys({"b", "alpha", "rotate", "direction", "around_all"});
+    MigLevel L;
+    L.branching = int(l.integer("b", 0, 100000));
+    L.alpha = float(l.number("alpha", 54.0, 1.0, 180.0)) * kPi / 180.0f;
+    L.rotate = float(l.number("rotate", 0.0, -180.0, 180.0)) * kPi / 180.0f;
+    if (l.has("direction")) {
+      glm::vec3 dir = l.vec3("direction", -1.0, 1.0);
+      if (glm::length(dir) < 1e-3f) l.fail("direction", "must not be the zero vector");
+      L.direction = dir;
+    }
+    L.around_all = l.boolean("around_all", false);
+    if (P.levels.empty())
+      for (const char* key : {"alpha", "rotate", "direction", "around_all"})
+        if (l.has(key)) l.fail(key, "level 1 is the user's [[volume]]; this key applies to later levels");
+    P.levels.push_back(L);
+  }
+  if (P.levels.empty()) t.fail("level", "at least one [[level]] table is required");
+  if (P.levels.size() > 12) t.fail("level", "at most 12 levels");
+  // Refuse runaway trees before building them: predicted endpoints and graph nodes.
+  double endpoints = P.levels[0].branching, total = endpoints, nodes = double(P.nodes);
+  for (size_t i = 1; i < P.levels.size(); ++i) {
+    double around = P.levels[i].around_all ? total : endpoints;
+    nodes += around * double(P.subgraph_nodes);
+    endpoints = around * P.levels[i].branching;
+    total += endpoints;
+  }
+  if (total > kMaxEndpoints)
+    t.fail("level", "would create about " + std::to_string(int64_t(total)) + " endpoints, more than " +
+                        std::to_string(int64_t(kMaxEndpoints)));
+  if (nodes > kMaxGraphNodes)
+    t.fail("subgraph_nodes", "would build about " + std::to_string(int64_t(nodes)) +
+                                 " graph nodes, more than " + std::to_string(int64_t(kMaxGraphNodes)));
+  return P;
+}
+
+}  // namespace
+
+TreeModel generate_mig(const TomlTable& t, const std::string& species_name,
+                       const GenerateOptions& options) {
+  t.check_keys({"method", "name", "seed", "nodes", "spacing", "reach", "root", "shell",
+                "subgraph_nodes", "subgraph_radius", "shrink", "volume", "level",
+                FOREST_SKELETON_STYLE_KEYS});
+  t.string("name", "");
+  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+  MigParams P = read_params(t);
+  SkeletonStyle defaults;
+  defaults.simplify = 0.05f;
+  SkeletonStyle style = read_skeleton_style(t, defaults);
+  MigStats stats;
+  TreeGraph graph = grow_mig(P, seed, &stats);
+  if (graph.nodes.size() < 2) t.fail("volume", "no endpoint could be joined to the root");
+  ModelDescription d;
+  d.method = "mig";
+  d.species = t.string("name", species_name);
+  d.seed = seed;
+  d.parameters = toml_to_json(t.raw());
+  TreeModel model = finish_skeleton(std::move(graph), style, d, seed);
+  model.meta["graph_nodes"] = stats.graph_nodes;
+  model.meta["subgraphs"] = stats.subgraphs;
+  model.meta["endpoints"] = stats.endpoints;
+  model.meta["unreachable_candidates"] = stats.unreachable;
+  return model;
+}
+
+const char* mig_default_species_text() {
+  // Keep identical to scenes/species/mig_o.toml (a unit test compares them).
+  return R"toml(method = "mig"
+# Seed 001 Table 4.1 (o): "cylinder and portion of sphere with alpha = 0.7 pi, b = 11;
+# levels 2, 3: alpha = 0.45 pi, b = 6" -- a straight, tall trunk under a spherical crown.
+# The thesis gives no sizes (d, K, k, r); these are ours, for a ~11 m tree. Forest budget (levels 1-2 only).
+name = "mig_o"
+seed = 7
+nodes = 2500            # K, level-1 graph
+reach = 4.0             # longest Yao edge, in node spacings
+shell = 1.2             # d_e: endpoints within 1.2 m of the crown surface
+subgraph_nodes = 120    # k
+subgraph_radius = 2.2   # r at level 2 (m)
+shrink = 0.6            # a
+simplify = 0.15         # m, Douglas-Peucker on branch chains
+smooth = 6
+trunk_radius = 0.22
+tip_radius = 0.008
+zeta = 0.3
+leaf_size = 0.16
+leaf_size_jitter = 0.3
+leaves_per_tip = 12
+leaves_along = 2
+ring_sides_min = 3
+ring_sides_max = 8
+bark_color = [0.27, 0.21, 0.16]
+leaf_color = [0.16, 0.33, 0.08]
+
+[[volume]]              # the trunk: paths squeeze through it into one stem
+shape = "cylinder"
+center = [0.0, 0.0, 0.0]
+radius = 0.5
+height = 5.0
+
+[[volume]]              # portion of sphere, alpha = 0.7 pi = 126 deg
+shape = "sphere_portion"
+center = [0.0, 4.5, 0.0]
+radius = 4.0
+angle = 126.0
+
+[[level]]
+b = 11
+
+[[level]]
+b = 6
+alpha = 81.0            # 0.45 pi
+
+# level 3 (b = 6) of the table is left out: 66 instead of 396 endpoints keeps the forest
+# budget; mig_a_hero shows a full four-level tree.
+)toml";
+}
+
+}  // namespace forest

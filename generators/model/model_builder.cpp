@@ -1,0 +1,98 @@
+#include "generators/model/model_builder.h"
+
+#include "generators/core/toml_reader.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "generators/core/limits.h"
+#include "generators/mesh/mesh_lod.h"
+
+namespace forest {
+
+namespace {
+nlohmann::json node_to_json(const toml::node& node) {
+  if (auto t = node.as_table()) return toml_to_json(*t);
+  if (auto a = node.as_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const toml::node& e : *a) out.push_back(node_to_json(e));
+    return out;
+  }
+  if (auto s = node.as_string()) return s->get();
+  if (auto i = node.as_integer()) return i->get();
+  if (auto f = node.as_floating_point()) return f->get();
+  if (auto b = node.as_boolean()) return b->get();
+  std::ostringstream text;  // date, time, date-time
+  node.visit([&](auto&& v) { text << v; });
+  return text.str();
+}
+}  // namespace
+
+nlohmann::json toml_to_json(const toml::table& table) {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto&& [key, value] : table) out[std::string(key.str())] = node_to_json(value);
+  return out;
+}
+
+namespace {
+thread_local TreeGraph* g_skeleton_sink = nullptr;
+}  // namespace
+
+SkeletonCapture::SkeletonCapture(TreeGraph* sink) : previous(g_skeleton_sink) { g_skeleton_sink = sink; }
+SkeletonCapture::~SkeletonCapture() { g_skeleton_sink = previous; }
+
+TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
+                           const MesherParams& mesher) {
+  if (graph.leaves.size() > kMaxLeavesPerModel)
+    throw InputError(d.species, 0, "leaf_count",
+                     std::to_string(graph.leaves.size()) + " leaves, more than the limit of " +
+                         std::to_string(kMaxLeavesPerModel) + " per model");
+  if (g_skeleton_sink) *g_skeleton_sink = graph;
+  TreeModel model;
+  model.branches = mesh_branches(graph, mesher);
+  optimize_mesh(model.branches);
+  static constexpr float kLodFractions[] = {0.5f, 0.25f, 0.12f};
+  model.branch_lods = simplify_lods(model.branches, kLodFractions);
+  model.leaf_card = make_leaf_card(d.leaf_shape);
+  model.leaf_texture = make_leaf_texture(d.leaf_shape);
+  model.leaves = graph.leaves;
+  model.bounding_sphere = bounding_sphere(model.branches, model.leaf_card, model.leaves);
+  model.bark_color = d.bark_color;
+  model.leaf_color = d.leaf_color;
+
+  float height = 0.0f;
+  for (const Vertex& v : model.branches.vertices) height = std::max(height, v.position.y);
+  for (const LeafPlacement& l : model.leaves)
+    for (const Vertex& v : model.leaf_card.vertices)
+      height = std::max(height, leaf_to_model(l, v.position).y);
+
+  nlohmann::json& m = model.meta;
+  m["format_version"] = 1;
+  m["generator"] = "forest";
+  m["method"] = d.method;
+  m["species"] = d.species;
+  m["seed"] = d.seed;
+  m["parameters"] = d.parameters;
+  m["node_count"] = graph.nodes.size();
+  m["leaf_count"] = model.leaves.size();
+  m["triangle_count"] = model.branches.indices.size() / 3;
+  nlohmann::json lods = nlohmann::json::array();
+  for (size_t i = 0; i < model.branch_lods.size(); ++i)
+    lods.push_back({{"level", i + 1},
+                    {"triangle_count", model.branch_lods[i].mesh.indices.size() / 3},
+                    {"error", model.branch_lods[i].error}});
+  m["branch_lods"] = lods;
+  m["leaf_shape"] = leaf_shape_name(d.leaf_shape);
+  const glm::vec4& s = model.bounding_sphere;
+  m["bounding_sphere"] = {s.x, s.y, s.z, s.w};
+  m["height"] = height;
+  return model;
+}
+
+void read_ring_sides(const TomlTable& t, MesherParams& mesher) {
+  mesher.min_sides = int(t.integer("ring_sides_min", mesher.min_sides, 3, 32));
+  mesher.max_sides = int(t.integer("ring_sides_max", mesher.max_sides, 3, 32));
+  if (mesher.max_sides < mesher.min_sides) t.fail("ring_sides_max", "must be >= ring_sides_min");
+}
+
+}  // namespace forest
