@@ -175,11 +175,11 @@ void table_7_4(vk::Context& ctx, const Options& o, const std::string& device) {
       r.order = var.name;
       double sum_needed = 0, sum_cook = 0;
       for (int j : ds) {
-        float lc = random.tables.lambda_cook[size_t(j)];
+        float lc = pr_lambda_cook(uint32_t(j));
         double target = sample_quality(random, lc, 1.0f / lc);  // Cook et al.: random order, s = 1/λ
         float need = smallest_lambda_reaching(pm.tables.q_opt, target, 1.0f);
         double saved = 1.0 - double(need) / double(lc);
-        r.d.push_back(random.tables.d[size_t(j)]);
+        r.d.push_back(pr_d(uint32_t(j)));
         r.lambda_cook.push_back(lc);
         r.q_cook.push_back(float(target));
         r.lambda_needed.push_back(need);

@@ -15,12 +15,14 @@ const std::vector<std::string>& bench_mode_names() {
 std::optional<BenchMode> bench_mode(const std::string& name) {
   BenchMode m;
   m.name = name;
-  if (name == "full") m.prune_mode = PRUNE_FULL;
-  else if (name == "cook") m.prune_mode = PRUNE_COOK;
-  else if (name == "opt") m.prune_mode = PRUNE_OPT;
-  else if (name == "opt-combined") m.prune_mode = PRUNE_OPT, m.combined_priority = true;
-  else if (name == "opt-occl") m.prune_mode = PRUNE_OPT, m.occlusion = true;
-  else return std::nullopt;
+  // A prune mode, or opt with a suffix: -combined (models baked with the combined priority),
+  // -occl (occlusion feedback).
+  std::string base = name;
+  if (name == "opt-combined") base = "opt", m.combined_priority = true;
+  if (name == "opt-occl") base = "opt", m.occlusion = true;
+  std::optional<PruneMode> mode = parse_prune_mode(base);
+  if (!mode) return std::nullopt;
+  m.prune_mode = *mode;
   return m;
 }
 

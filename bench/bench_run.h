@@ -18,7 +18,7 @@ namespace forest {
 // scene), opt-occl (opt + depth-buffer occlusion feedback).
 struct BenchMode {
   std::string name;
-  uint32_t prune_mode = PRUNE_FULL;
+  PruneMode prune_mode = PruneMode::full;
   bool occlusion = false;
   bool combined_priority = false;
 };

@@ -67,7 +67,7 @@ ThroughputResult measure_triangle_throughput(vk::Context& ctx, const ThroughputO
   camera.far = distance + float(side) + 10.0f;
 
   Renderer renderer(ctx, scene, options.width, options.height, 1);
-  FrameSettings settings;  // PRUNE_FULL: every triangle of LOD0
+  FrameSettings settings;  // PruneMode::full: every triangle of LOD0
   renderer.render(camera, nullptr, settings);  // warm-up (pipeline caches, first-touch memory)
   ThroughputResult r;
   uint64_t index_triangles = uint64_t(scene.models[0].branches.indices.size() / 3) * scene.instances.size();

@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
       s.instances = place_trees(s.desc, s.terrain);
       Renderer r(ctx, s, width, height, 1);
       FrameSettings settings;
-      settings.prune_mode = PRUNE_COOK;
+      settings.prune_mode = PruneMode::cook;
       std::vector<double> cpu, gpu;
       uint32_t visible = 0;
       r.render(s.desc.camera, nullptr, settings);  // warm-up: pipelines, first-touch memory

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     TomlDocument doc = TomlDocument::load(file);
     MgvParams P = read_mgv_params(doc.root());
     SkeletonStyle style = read_skeleton_style(doc.root());
+    LookKeys look = read_look_keys(doc.root());
     double best_graph = 1e9, best_grow = 1e9, best_mesh = 1e9, best_cpu_graph = 1e9, best_cpu_grow = 1e9;
     size_t nodes = 0, endpoints = 0, tree_nodes = 0, triangles = 0;
     for (int r = 0; r < repeat; ++r) {
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
       tree_nodes = tree.nodes.size();
       ModelDescription d;
       d.method = "mgv";
-      TreeModel m = finish_skeleton(std::move(tree), style, d, 1);
+      TreeModel m = build_model(finish_skeleton(std::move(tree), style, 1), look, d);
       auto t3 = Clock::now();
       best_graph = std::min(best_graph, seconds(t0, t1));
       best_grow = std::min(best_grow, seconds(t1, t2));

@@ -1,8 +1,10 @@
 # Compiles every GLSL file to SPIR-V with glslangValidator, validates it with spirv-val
 # (a failure fails the build) and embeds it as a uint32_t array so the executable needs
-# no shader files at run time. Exposes `forest::shaders::<stem>_<stage>` spans.
+# no shader files at run time. Exposes `forest::shaders::<stem>_<stage>` spans. The .spv files
+# stay in FOREST_SHADER_BINARY_DIR, where tests/unit/test_gpu_interface.cpp reflects them.
+set(FOREST_SHADER_BINARY_DIR ${CMAKE_BINARY_DIR}/shaders)
 function(forest_compile_shaders target sources)
-  set(out_dir ${CMAKE_BINARY_DIR}/shaders)
+  set(out_dir ${FOREST_SHADER_BINARY_DIR})
   file(MAKE_DIRECTORY ${out_dir})
   set(headers "")
   set(table "")

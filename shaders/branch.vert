@@ -6,9 +6,9 @@
 
 layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
 
-layout(location = 0) in vec3 in_position;
-layout(location = 1) in vec3 in_normal;
-layout(location = 2) in vec2 in_uv;
+layout(location = ATTR_POSITION) in vec3 in_position;
+layout(location = ATTR_NORMAL) in vec3 in_normal;
+layout(location = ATTR_UV) in vec2 in_uv;
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_albedo;

@@ -10,23 +10,19 @@
 // device has it (samplerFilterMinmax), or as 4 texel fetches (MINMAX_SAMPLER = false).
 #include "gpu_types.h"
 
-layout(constant_id = 0) const bool MINMAX_SAMPLER = false;
+layout(constant_id = SPEC_MINMAX_SAMPLER) const bool MINMAX_SAMPLER = false;
 
 layout(local_size_x = PYRAMID_GROUP_SIZE, local_size_y = PYRAMID_GROUP_SIZE) in;
-layout(set = 0, binding = 0) uniform sampler2D source;  // MIN-reduction sampler iff MINMAX_SAMPLER
-layout(set = 0, binding = 1, r32f) uniform writeonly image2D destination;
-
-layout(push_constant) uniform Level {
-  ivec2 source_size;
-  ivec2 destination_size;
-  uint first_level;  // 1: the source is the depth buffer
-};
+layout(set = 0, binding = PYRAMID_BINDING_SOURCE) uniform sampler2D source;  // MIN-reduction sampler iff MINMAX_SAMPLER
+layout(set = 0, binding = PYRAMID_BINDING_DESTINATION, r32f) uniform writeonly image2D destination;
+layout(push_constant) uniform Level { DepthPyramidPush level; };
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 source_size = level.source_size, destination_size = level.destination_size;
   if (any(greaterThanEqual(p, destination_size))) return;
   float farthest = 1.0;
-  if (first_level != 0) {
+  if (level.first_level != 0) {
     // Source pixels overlapping [p, p + 1) scaled to the source grid.
     ivec2 lo = (p * source_size) / destination_size;
     ivec2 hi = min(((p + 1) * source_size + destination_size - 1) / destination_size, source_size);

@@ -9,6 +9,7 @@
 namespace forest::gpu {
 using uint = uint32_t;
 using vec2 = glm::vec2;
+using ivec2 = glm::ivec2;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using ivec4 = glm::ivec4;
@@ -35,6 +36,24 @@ using mat4 = glm::mat4;
 #define BINDING_INSTANCE_STATE 13  // InstanceState: occlusion feedback kept across frames
 #define BINDING_TAIL_JOBS 14       // TailJob per partly occluded tree (cull.comp -> tail_cull.comp)
 #define BINDING_TAIL_LEAVES 15     // leaf indices of the visible tails, in priority order
+
+// Descriptor bindings of depth_pyramid.comp's set (one set per pyramid level).
+#define PYRAMID_BINDING_SOURCE 0       // sampler2D: the depth buffer (level 0) or the level above
+#define PYRAMID_BINDING_DESTINATION 1  // r32f image2D: the level written
+
+// Descriptor bindings of present.frag's set (forest walk's copy pass).
+#define PRESENT_BINDING_RENDERED 0  // sampler2D: the renderer's finished frame
+
+// Specialization-constant ids: layout(constant_id = SPEC_*) in GLSL, VkSpecializationMapEntry
+// ids in C++. Each shader has its own id space; every constant is a 32-bit bool.
+#define SPEC_LEAF 0               // tree.frag: drawing leaf cards (texture alpha, translucency)
+#define SPEC_ALPHA_TO_COVERAGE 1  // tree.frag: the pipeline turns the leaf alpha into coverage
+#define SPEC_MINMAX_SAMPLER 0     // depth_pyramid.comp: levels >= 1 reduce with a MIN sampler
+
+// Vertex attribute locations of forest::Vertex (binding 0), in every vertex shader with inputs.
+#define ATTR_POSITION 0  // vec3
+#define ATTR_NORMAL 1    // vec3
+#define ATTR_UV 2        // vec2
 
 // FrameData.prune_mode: how many leaves of each tree are drawn (Neubert 2012 ch7).
 #define PRUNE_FULL 0   // every leaf, λ = 1
@@ -207,6 +226,20 @@ struct PrCountPush {
   uint reference_offset;
   uint branch_offset;  // PR_NO_MASK: the test frame already holds the branches
   uint result;         // index into the PrCounts array
+};
+
+// Push constants of depth_pyramid.comp: one level's reduction.
+struct DepthPyramidPush {
+  ivec2 source_size;       // texels of the source (the depth buffer or the level above)
+  ivec2 destination_size;  // texels of the level written
+  uint first_level;        // 1: the source is the depth buffer
+  uint pad;                // std430 rounds the struct up to its 8-byte alignment
+};
+
+// Push constants of present.frag: the viewport rectangle the frame is scaled into, in pixels.
+struct PresentPush {
+  vec2 offset;
+  vec2 size;
 };
 
 #ifdef __cplusplus

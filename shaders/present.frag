@@ -1,8 +1,11 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
 // forest walk's copy pass: the rendered frame, scaled into the viewport rectangle (letterbox).
 // Sampling decodes sRGB and the attachment re-encodes it, so same-size copies keep the bytes.
-layout(set = 0, binding = 0) uniform sampler2D rendered;
-layout(push_constant) uniform Rect { vec2 offset; vec2 size; } rect;  // viewport, pixels
+#include "gpu_types.h"
+
+layout(set = 0, binding = PRESENT_BINDING_RENDERED) uniform sampler2D rendered;
+layout(push_constant) uniform Rect { PresentPush rect; };  // viewport, pixels
 layout(location = 0) out vec4 out_color;
 
 void main() {

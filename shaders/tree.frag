@@ -5,8 +5,8 @@
 // to alpha-to-coverage, sharpened so edges stay crisp at every mip level.
 #include "common.glsl"
 
-layout(constant_id = 0) const bool LEAF = false;
-layout(constant_id = 1) const bool ALPHA_TO_COVERAGE = false;
+layout(constant_id = SPEC_LEAF) const bool LEAF = false;
+layout(constant_id = SPEC_ALPHA_TO_COVERAGE) const bool ALPHA_TO_COVERAGE = false;
 
 layout(set = 0, binding = BINDING_LEAF_TEXTURES) uniform sampler2DArray leaf_textures;
 

@@ -1,6 +1,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "engine/app/app_common.h"
 #include "engine/app/commands.h"
 #include "engine/app/progress.h"
 #include "engine/tools/bake/pr_bake.h"
@@ -19,22 +20,14 @@ BakeResult bake_model(TreeModel& model, const BakeArgs& args) {
   settings.resolution = args.resolution;
   if (!parse_priority(args.priority))  // before creating a Vulkan context
     throw InputError("--priority", 0, "", "unknown priority '" + args.priority + "' (random, density, orientation, combined, layered)");
-  vk::Context ctx;
-  vk::ContextOptions options;
-  options.device = args.device;
-  options.validation = vk::validation_from_env();
   TreeBakeResult tb;
-  try {
-    vk::create_context(ctx, options);
+  {
+    CommandContext context(context_options(args.device, false));
     ProgressBar bar("bake: measuring PR");
     settings.progress = [&](double f) { bar.update(f); };
-    tb = bake_tree_model(ctx, model, settings);
+    tb = bake_tree_model(context.ctx, model, settings);
     bar.finish();
-  } catch (...) {
-    vk::destroy_context(ctx);
-    throw;
   }
-  vk::destroy_context(ctx);
   BakeResult r;
   r.measurement = std::move(tb.measurement);
   r.hull_seconds = tb.hull_seconds;

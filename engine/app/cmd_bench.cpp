@@ -6,11 +6,14 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "engine/tools/bake/species_cache.h"
+#include "engine/app/app_common.h"
 #include "engine/app/commands.h"
 #include "engine/app/progress.h"
 #include "bench/bench_run.h"
@@ -57,10 +60,6 @@ ModeSummary summarize(const BenchMode& mode, std::vector<BenchFrame> frames) {
   if (s.pr_frames) s.quality /= s.pr_frames, s.precision /= s.pr_frames, s.recall /= s.pr_frames;
   s.frames = std::move(frames);
   return s;
-}
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_file_atomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
 }
 
 std::string frames_csv(const ModeSummary& m) {
@@ -131,226 +130,327 @@ std::string utc_now() {
   return buf;
 }
 
-}  // namespace
 
-int run_bench(const BenchArgs& args) {
-  SceneDesc desc = load_scene_file(args.scene);
+// The inputs of a bench run, all checked before a Vulkan context exists.
+struct BenchPlan {
+  SceneDesc desc;
+  size_t path = 0;                // the [[path]] played: an index into desc.paths
+  std::vector<BenchMode> modes;   // in --modes order
+  std::filesystem::path out;      // an existing folder
+  std::vector<uint32_t> frames;   // path frames played
+  const CameraPath& camera_path() const { return desc.paths[path]; }
+};
+
+std::vector<BenchMode> parse_modes(const std::string& text) {
+  std::vector<BenchMode> modes;
+  std::stringstream list(text);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    auto m = bench_mode(name);
+    if (!m) throw InputError("--modes", 0, name, "unknown mode (full, cook, opt, opt-combined, opt-occl)");
+    modes.push_back(*m);
+  }
+  if (modes.empty()) throw InputError("--modes", 0, "modes", "no mode given");
+  return modes;
+}
+
+BenchPlan plan_bench(const BenchArgs& args) {
+  BenchPlan plan;
+  plan.desc = load_scene_file(args.scene);
+  SceneDesc& desc = plan.desc;
   if (desc.paths.empty()) throw InputError(args.scene, 0, "path", "the scene has no [[path]] to play");
   const CameraPath* path = args.path.empty() ? &desc.paths.front() : find_path(desc, args.path);
   if (!path) throw InputError(args.scene, 0, "--path", "no [[path]] named '" + args.path + "'");
-  std::vector<BenchMode> modes;
-  {
-    std::stringstream list(args.modes);
-    std::string name;
-    while (std::getline(list, name, ',')) {
-      auto m = bench_mode(name);
-      if (!m) throw InputError("--modes", 0, name, "unknown mode (full, cook, opt, opt-combined, opt-occl)");
-      modes.push_back(*m);
-    }
-    if (modes.empty()) throw InputError("--modes", 0, "modes", "no mode given");
-  }
-  std::filesystem::path out = args.out;
-  if (!std::filesystem::is_directory(out))
+  plan.path = size_t(path - desc.paths.data());
+  plan.modes = parse_modes(args.modes);
+  plan.out = args.out;
+  if (!std::filesystem::is_directory(plan.out))
     throw InputError(args.out, 0, "--out", "is not an existing folder");
-  if (args.width) desc.width = *args.width;
-  if (args.height) desc.height = *args.height;
-  std::vector<uint32_t> frame_list = bench_frames(*path, args.every, args.frames);
+  override_size(desc, args.width, args.height);
+  plan.frames = bench_frames(*path, args.every, args.frames);
+  return plan;
+}
 
+std::vector<BenchFrame> play_mode(vk::Context& ctx, const Scene& scene, const BenchPlan& plan, const BenchArgs& args,
+                                  const BenchMode& mode, std::map<uint32_t, FrameImage>* references) {
+  BenchPlayOptions play;
+  play.width = plan.desc.width;
+  play.height = plan.desc.height;
+  play.frames = plan.frames;
+  play.pr_every = args.pr_every;
+  play.occlusion_warmup = args.occlusion_warmup;
+  play.references = references;
+  ProgressBar bar("bench " + mode.name);
+  play.progress = [&](double f) { bar.update(f); };
+  return play_bench_path(ctx, scene, plan.camera_path(), mode, play);
+}
+
+// The path once per mode. opt-combined draws the species baked with the combined priority:
+// unless the scene's own bake is combined already, that scene is built on first use and
+// keeps full-detail references of its own (they differ with the leaf order).
+std::vector<ModeSummary> play_modes(vk::Context& ctx, const Scene& scene, const SceneBuildOptions& build,
+                                    const BenchPlan& plan, const BenchArgs& args) {
+  std::optional<Scene> combined;
+  std::vector<ModeSummary> results;
+  std::map<uint32_t, FrameImage> references, combined_references;  // full-detail coverage per frame
+  for (const BenchMode& mode : plan.modes) {
+    const Scene* s = &scene;
+    std::map<uint32_t, FrameImage>* refs = &references;
+    if (mode.combined_priority && plan.desc.bake.priority != "combined") {
+      if (!combined) {
+        SceneDesc d = plan.desc;
+        d.bake.priority = "combined";
+        combined = build_scene(d, build);
+      }
+      s = &*combined;
+      refs = &combined_references;
+    }
+    results.push_back(summarize(mode, play_mode(ctx, *s, plan, args, mode, refs)));
+  }
+  return results;
+}
+
+// Raw triangle throughput of the device at the bench's resolution (none when instances is 0).
+ThroughputResult probe_throughput(vk::Context& ctx, const SceneDesc& desc, uint32_t instances) {
+  ThroughputOptions probe;
+  probe.width = desc.width;
+  probe.height = desc.height;
+  probe.instances = instances;
+  ThroughputResult raw;
+  if (probe.instances) raw = measure_triangle_throughput(ctx, probe);
+  return raw;
+}
+
+// What the summaries are written from.
+struct BenchReport {
+  const BenchArgs& args;
+  const BenchPlan& plan;
+  const std::vector<ModeSummary>& modes;
+  const ModeSummary* cook;  // null when cook was not played
+  size_t instances;         // trees in the scene
+  ThroughputResult raw;
+  std::string device, driver;
+};
+
+// One mode against Cook's and against the throughput probe.
+struct VsCook {
+  double tris_per_s = 0, throughput_fraction = 0;
+  bool measured = false;                     // Cook was played and drew, in measurable time
+  double geo = 0, time = 0, leaf_ratio = 0;  // ratios to Cook's; 0 unless measured
+  bool q_ok = false;
+  std::string q_delta = "-";  // Q - Q_cook, signed; "-" without PR frames on both sides
+};
+
+VsCook compare_to_cook(const ModeSummary& m, const ModeSummary* cook, const ThroughputResult& raw) {
+  VsCook v;
+  v.tris_per_s = m.gpu_draw_ms > 0 ? m.triangles / (m.gpu_draw_ms * 1e-3) : 0.0;
+  v.throughput_fraction = raw.triangles_per_second() > 0 ? v.tris_per_s / raw.triangles_per_second() : 0.0;
+  if (cook && cook->triangles > 0 && cook->gpu_frame_ms > 0) {
+    v.measured = true;
+    v.geo = m.triangles / cook->triangles, v.time = m.gpu_frame_ms / cook->gpu_frame_ms;
+    v.q_ok = m.quality >= cook->quality;
+    v.leaf_ratio = cook->leaves > 0 ? m.leaves / cook->leaves : 0.0;
+  }
+  // Q against Cook's, signed: "equal Q" is a judgement the reader makes from the number.
+  if (cook && m.pr_frames && cook->pr_frames) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%+.5f", m.quality - cook->quality);
+    v.q_delta = text;
+  }
+  return v;
+}
+
+nlohmann::ordered_json summary_header(const BenchReport& r) {
+  const SceneDesc& desc = r.plan.desc;
+  nlohmann::ordered_json j;
+  j["scene"] = r.args.scene;
+  j["path"] = r.plan.camera_path().name;
+  j["fps"] = r.plan.camera_path().fps;
+  j["frames"] = r.plan.frames.size();
+  j["pr_every"] = r.args.pr_every;
+  j["device"] = r.device;
+  j["driver"] = r.driver;
+  j["resolution"] = {desc.width, desc.height};
+  j["samples"] = desc.samples;
+  j["instances"] = r.instances;
+  j["date"] = utc_now();
+  j["throughput_probe"] = {{"triangles_per_frame", r.raw.triangles_per_frame},
+                           {"gpu_draw_ms", r.raw.draw_ms},
+                           {"triangles_per_second", r.raw.triangles_per_second()}};
+  return j;
+}
+
+void add_vs_cook_json(nlohmann::ordered_json& e, const ModeSummary& m, const ModeSummary& cook, const VsCook& v) {
+  e["geometry_vs_cook"] = v.geo;
+  e["leaves_vs_cook"] = v.leaf_ratio;  // foliage alone, as Neubert 2012's Table 7.4 counts it
+  e["frame_time_vs_cook"] = v.time;
+  e["frame_rate_vs_cook"] = v.time > 0 ? 1.0 / v.time : 0.0;
+  e["q_at_least_cook"] = v.q_ok;
+  if (m.pr_frames && cook.pr_frames) e["q_minus_cook"] = m.quality - cook.quality;
+  std::vector<double> along;
+  for (size_t i = 0; i < m.frames.size() && i < cook.frames.size(); ++i)
+    along.push_back(cook.frames[i].tree_triangles ? double(m.frames[i].tree_triangles) /
+                                                        double(cook.frames[i].tree_triangles)
+                                                  : 0.0);
+  e["geometry_vs_cook_along_path"] = along;
+}
+
+nlohmann::ordered_json mode_json(const ModeSummary& m, const ModeSummary* cook, const VsCook& v) {
+  nlohmann::ordered_json e;
+  e["frames"] = m.frames.size();
+  e["gpu_frame_ms"] = m.gpu_frame_ms;
+  e["gpu_cull_ms"] = m.gpu_cull_ms;
+  e["gpu_draw_ms"] = m.gpu_draw_ms;
+  e["gpu_pyramid_ms"] = m.gpu_pyramid_ms;
+  e["cpu_ms"] = m.cpu_ms;
+  e["tree_triangles"] = m.triangles;
+  e["tree_vertices_ia"] = m.vertices;
+  e["leaves_drawn"] = m.leaves;
+  e["instances_visible"] = m.visible;
+  e["mean_lambda"] = m.lambda;
+  if (m.mode.occlusion)  // what occlusion feedback saved against the same mode without it, per frame
+    e["occlusion"] = {{"leaves_saved", m.leaves_saved},
+                      {"leaves_saved_share", m.leaves_saved_share()},
+                      {"triangles_saved", m.triangles_saved},
+                      {"triangles_saved_share", m.triangles_saved_share()},
+                      {"instances_culled", m.occluded},
+                      {"gpu_pyramid_and_cull_share", m.occlusion_gpu_share()}};
+  e["pr_frames"] = m.pr_frames;
+  e["precision"] = m.precision;
+  e["recall"] = m.recall;
+  e["q"] = m.quality;
+  e["triangles_per_second"] = v.tris_per_s;
+  e["throughput_fraction"] = v.throughput_fraction;
+  if (v.measured) add_vs_cook_json(e, m, *cook, v);
+  return e;
+}
+
+void print_bench_header(const BenchReport& r) {
+  const SceneDesc& desc = r.plan.desc;
+  std::printf("%s on %s (%s), %ux%u, %zu frames of path '%s'\n", r.args.scene.c_str(), r.device.c_str(),
+              r.driver.c_str(), desc.width, desc.height, r.plan.frames.size(), r.plan.camera_path().name.c_str());
+  std::printf("raw throughput: %.1f M triangles/s (%llu triangles in %.2f ms)\n", r.raw.triangles_per_second() * 1e-6,
+              (unsigned long long)r.raw.triangles_per_frame, r.raw.draw_ms);
+}
+
+void print_mode_row(const ModeSummary& m, const ModeSummary* cook, const VsCook& v) {
+  std::printf("%-13s %10.0f %10s %9.2f %9s %7.4f %8s %9.3f %8.1f%%\n", m.mode.name.c_str(), m.triangles,
+              cook ? (std::to_string(int(std::lround(v.geo * 100))) + "%").c_str() : "-", m.gpu_frame_ms,
+              cook ? (std::to_string(int(std::lround(v.time * 100))) + "%").c_str() : "-", m.quality,
+              v.q_delta.c_str(), m.lambda, 100.0 * v.throughput_fraction);
+}
+
+// summary.md: Table 7.4 style.
+std::string markdown_header(const BenchReport& r) {
+  const SceneDesc& desc = r.plan.desc;
+  const CameraPath& path = r.plan.camera_path();
+  std::ostringstream md;
+  md << "# forest bench: " << r.args.scene << ", path '" << path.name << "'\n\n"
+     << "Device **" << r.device << "** (driver " << r.driver << "), " << desc.width << "x" << desc.height << ", "
+     << desc.samples << " sample(s)/pixel, " << r.instances << " trees, " << r.plan.frames.size()
+     << " frames at " << path.fps << " fps (every " << r.args.every << "), PR every " << r.args.pr_every
+     << " played frames; " << utc_now() << ".\n\n"
+     << "Raw throughput probe: " << r.raw.triangles_per_frame << " triangles in " << r.raw.draw_ms << " ms GPU draw = "
+     << r.raw.triangles_per_second() * 1e-6 << " M triangles/s.\n\n"
+     << "| mode | tree triangles | vs Cook | leaves | vs Cook | GPU frame ms | vs Cook | frame rate vs Cook | mean Q | "
+        "Q - Q_cook | mean lambda | triangles/s of probe |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  return md.str();
+}
+
+std::string cell(bool known, const char* format, double value) {  // "-" for what was not measured
+  char text[32] = "-";
+  if (known) std::snprintf(text, sizeof text, format, value);
+  return std::string(text);
+}
+
+std::string markdown_row(const ModeSummary& m, const ModeSummary* cook, const VsCook& v) {
+  auto vs_cook = [&](const char* format, double value) { return cell(cook != nullptr, format, value); };
+  char row[512];
+  std::snprintf(row, sizeof row, "| %s | %.0f | %s | %.0f | %s | %.2f | %s | %s | %s | %s | %.3f | %.1f%% |\n",
+                m.mode.name.c_str(), m.triangles, vs_cook("%.1f%%", 100.0 * v.geo).c_str(), m.leaves,
+                vs_cook("%.1f%%", 100.0 * v.leaf_ratio).c_str(), m.gpu_frame_ms,
+                vs_cook("%.1f%%", 100.0 * v.time).c_str(), vs_cook("%.2fx", v.time > 0 ? 1.0 / v.time : 0.0).c_str(),
+                cell(m.pr_frames > 0, "%.4f", m.quality).c_str(), v.q_delta.c_str(), m.lambda,
+                100.0 * v.throughput_fraction);
+  return row;
+}
+
+// A paragraph of summary.md (it starts with an empty line) on what occlusion feedback saved.
+std::string occlusion_note(const ModeSummary& m) {
+  char row[640];
+  std::snprintf(row, sizeof row,
+                "\nOcclusion feedback (%s), mean per frame: %.0f leaves saved (%.1f %% of what the mode alone "
+                "draws), %.0f triangles saved (%.1f %%), %.1f trees culled; depth pyramid %.3f ms + cull %.3f ms "
+                "= %.2f %% of the GPU frame (goal <= 5 %%).\n",
+                m.mode.name.c_str(), m.leaves_saved, 100.0 * m.leaves_saved_share(), m.triangles_saved,
+                100.0 * m.triangles_saved_share(), m.occluded, m.gpu_pyramid_ms, m.gpu_cull_ms,
+                100.0 * m.occlusion_gpu_share());
+  return row;
+}
+
+// summary.json, summary.md, frames_<mode>.csv and the two plots, with the table on stdout.
+void write_bench_results(const BenchReport& r) {
+  const SceneDesc& desc = r.plan.desc;
+  const std::filesystem::path& out = r.plan.out;
+  std::string label = r.device + ", " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + ", " +
+                      std::filesystem::path(r.args.scene).filename().string();
+  nlohmann::ordered_json j = summary_header(r);
+  print_bench_header(r);
+  std::ostringstream md;
+  md << markdown_header(r);
+  std::printf("%-13s %10s %10s %9s %9s %7s %7s %9s %9s\n", "mode", "triangles", "vs cook", "frame ms",
+              "vs cook", "Q", "Q-cook", "mean lam", "tri/s %");
+  for (const ModeSummary& m : r.modes) {
+    VsCook v = compare_to_cook(m, r.cook, r.raw);
+    j["modes"][m.mode.name] = mode_json(m, r.cook, v);
+    print_mode_row(m, r.cook, v);
+    md << markdown_row(m, r.cook, v);
+    write_text_file(out / ("frames_" + m.mode.name + ".csv"), frames_csv(m));
+  }
+  for (const ModeSummary& m : r.modes) {
+    if (!m.mode.occlusion) continue;
+    std::string note = occlusion_note(m);
+    md << note;
+    std::printf("%s", note.c_str() + 1);
+  }
+  write_text_file(out / "summary.json", j.dump(2) + "\n");
+  md << "\nGoals (this project's, beyond Neubert 2012 §7.6): >= 45 % less geometry than Cook and >= 2x its frame rate at equal Q "
+        "(the paper: 30.1 %, ~1.67x); Q - Q_cook >= -0.001 is taken as equal Q. Plots: triangles.png, frame_time.png; per frame: frames_<mode>.csv.\n";
+  write_text_file(out / "summary.md", md.str());
+  write_path_plot(r.modes, "tree triangles per frame (" + label + ")", "triangles",
+                  [](const BenchFrame& f) { return double(f.tree_triangles); }, out / "triangles.png");
+  write_path_plot(r.modes, "GPU frame time (" + label + ")", "ms",
+                  [](const BenchFrame& f) { return f.stats.frame_ms; }, out / "frame_time.png");
+  std::printf("wrote %s: summary.json, summary.md, frames_<mode>.csv, triangles.png, frame_time.png\n", out.c_str());
+}
+
+const ModeSummary* find_cook(const std::vector<ModeSummary>& results) {
+  const ModeSummary* cook = nullptr;
+  for (const ModeSummary& m : results)
+    if (m.mode.name == "cook") cook = &m;
+  return cook;
+}
+
+}  // namespace
+
+int run_bench(const BenchArgs& args) {
+  BenchPlan plan = plan_bench(args);
   SpeciesCacheOptions cache;
   cache.dir = args.cache;
-  cache.log = [](const std::string& line) { std::printf("%s\n", line.c_str()), std::fflush(stdout); };
+  cache.log = print_line;
 
-  vk::Context ctx;
-  vk::ContextOptions options;
-  options.device = args.device;
-  options.validation = args.validate || vk::validation_from_env();
-  int code = 0;
-  try {
-    vk::create_context(ctx, options);
-    cache.ctx = &ctx;
-    SceneBuildOptions build;
-    build.species = cached_species_source(cache);
-    Scene scene = build_scene(desc, build);
-    std::optional<Scene> combined;  // opt-combined: the species baked with the combined priority
-    std::vector<ModeSummary> results;
-    std::map<uint32_t, FrameImage> references, combined_references;  // full-detail coverage per frame
-    for (const BenchMode& mode : modes) {
-      const Scene* s = &scene;
-      std::map<uint32_t, FrameImage>* refs = &references;
-      if (mode.combined_priority && desc.bake.priority != "combined") {
-        if (!combined) {
-          SceneDesc d = desc;
-          d.bake.priority = "combined";
-          combined = build_scene(d, build);
-        }
-        s = &*combined;
-        refs = &combined_references;
-      }
-      BenchPlayOptions play;
-      play.width = desc.width;
-      play.height = desc.height;
-      play.frames = frame_list;
-      play.pr_every = args.pr_every;
-      play.occlusion_warmup = args.occlusion_warmup;
-      play.references = refs;
-      ProgressBar bar("bench " + mode.name);
-      play.progress = [&](double f) { bar.update(f); };
-      results.push_back(summarize(mode, play_bench_path(ctx, *s, *path, mode, play)));
-    }
-    ThroughputOptions probe;
-    probe.width = desc.width;
-    probe.height = desc.height;
-    probe.instances = args.probe_instances;
-    ThroughputResult raw;
-    if (probe.instances) raw = measure_triangle_throughput(ctx, probe);
-
-    if (ctx.validation_messages > 0) {
-      std::fprintf(stderr, "forest: %u Vulkan validation message(s); no results written (last: %s)\n",
-                   ctx.validation_messages.load(), ctx.last_validation_message.c_str());
-      code = 1;
-    } else {
-      const ModeSummary* cook = nullptr;
-      for (const ModeSummary& m : results)
-        if (m.mode.name == "cook") cook = &m;
-      std::string device = ctx.properties.deviceName, driver = driver_name(ctx);
-      std::string label = device + ", " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + ", " +
-                          std::filesystem::path(args.scene).filename().string();
-      nlohmann::ordered_json j;
-      j["scene"] = args.scene;
-      j["path"] = path->name;
-      j["fps"] = path->fps;
-      j["frames"] = frame_list.size();
-      j["pr_every"] = args.pr_every;
-      j["device"] = device;
-      j["driver"] = driver;
-      j["resolution"] = {desc.width, desc.height};
-      j["samples"] = desc.samples;
-      j["instances"] = scene.instances.size();
-      j["date"] = utc_now();
-      j["throughput_probe"] = {{"triangles_per_frame", raw.triangles_per_frame},
-                               {"gpu_draw_ms", raw.draw_ms},
-                               {"triangles_per_second", raw.triangles_per_second()}};
-      std::printf("%s on %s (%s), %ux%u, %zu frames of path '%s'\n", args.scene.c_str(), device.c_str(),
-                  driver.c_str(), desc.width, desc.height, frame_list.size(), path->name.c_str());
-      std::printf("raw throughput: %.1f M triangles/s (%llu triangles in %.2f ms)\n", raw.triangles_per_second() * 1e-6,
-                  (unsigned long long)raw.triangles_per_frame, raw.draw_ms);
-      std::ostringstream md;  // summary.md: Table 7.4 style
-      md << "# forest bench: " << args.scene << ", path '" << path->name << "'\n\n"
-         << "Device **" << device << "** (driver " << driver << "), " << desc.width << "x" << desc.height << ", "
-         << desc.samples << " sample(s)/pixel, " << scene.instances.size() << " trees, " << frame_list.size()
-         << " frames at " << path->fps << " fps (every " << args.every << "), PR every " << args.pr_every
-         << " played frames; " << utc_now() << ".\n\n"
-         << "Raw throughput probe: " << raw.triangles_per_frame << " triangles in " << raw.draw_ms << " ms GPU draw = "
-         << raw.triangles_per_second() * 1e-6 << " M triangles/s.\n\n"
-         << "| mode | tree triangles | vs Cook | leaves | vs Cook | GPU frame ms | vs Cook | frame rate vs Cook | mean Q | "
-            "Q - Q_cook | mean lambda | triangles/s of probe |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-      std::printf("%-13s %10s %10s %9s %9s %7s %7s %9s %9s\n", "mode", "triangles", "vs cook", "frame ms",
-                  "vs cook", "Q", "Q-cook", "mean lam", "tri/s %");
-      for (ModeSummary& m : results) {
-        double tris_per_s = m.gpu_draw_ms > 0 ? m.triangles / (m.gpu_draw_ms * 1e-3) : 0.0;
-        nlohmann::ordered_json e;
-        e["frames"] = m.frames.size();
-        e["gpu_frame_ms"] = m.gpu_frame_ms;
-        e["gpu_cull_ms"] = m.gpu_cull_ms;
-        e["gpu_draw_ms"] = m.gpu_draw_ms;
-        e["gpu_pyramid_ms"] = m.gpu_pyramid_ms;
-        e["cpu_ms"] = m.cpu_ms;
-        e["tree_triangles"] = m.triangles;
-        e["tree_vertices_ia"] = m.vertices;
-        e["leaves_drawn"] = m.leaves;
-        e["instances_visible"] = m.visible;
-        e["mean_lambda"] = m.lambda;
-        if (m.mode.occlusion)  // what occlusion feedback saved against the same mode without it, per frame
-          e["occlusion"] = {{"leaves_saved", m.leaves_saved},
-                            {"leaves_saved_share", m.leaves_saved_share()},
-                            {"triangles_saved", m.triangles_saved},
-                            {"triangles_saved_share", m.triangles_saved_share()},
-                            {"instances_culled", m.occluded},
-                            {"gpu_pyramid_and_cull_share", m.occlusion_gpu_share()}};
-        e["pr_frames"] = m.pr_frames;
-        e["precision"] = m.precision;
-        e["recall"] = m.recall;
-        e["q"] = m.quality;
-        e["triangles_per_second"] = tris_per_s;
-        e["throughput_fraction"] = raw.triangles_per_second() > 0 ? tris_per_s / raw.triangles_per_second() : 0.0;
-        double geo = 0, time = 0, leaf_ratio = 0;
-        bool q_ok = false;
-        if (cook && cook->triangles > 0 && cook->gpu_frame_ms > 0) {
-          geo = m.triangles / cook->triangles, time = m.gpu_frame_ms / cook->gpu_frame_ms;
-          q_ok = m.quality >= cook->quality;
-          leaf_ratio = cook->leaves > 0 ? m.leaves / cook->leaves : 0.0;
-          e["geometry_vs_cook"] = geo;
-          e["leaves_vs_cook"] = leaf_ratio;  // foliage alone, as Neubert 2012's Table 7.4 counts it
-          e["frame_time_vs_cook"] = time;
-          e["frame_rate_vs_cook"] = time > 0 ? 1.0 / time : 0.0;
-          e["q_at_least_cook"] = q_ok;
-          if (m.pr_frames && cook->pr_frames) e["q_minus_cook"] = m.quality - cook->quality;
-          std::vector<double> along;
-          for (size_t i = 0; i < m.frames.size() && i < cook->frames.size(); ++i)
-            along.push_back(cook->frames[i].tree_triangles ? double(m.frames[i].tree_triangles) /
-                                                                 double(cook->frames[i].tree_triangles)
-                                                           : 0.0);
-          e["geometry_vs_cook_along_path"] = along;
-        }
-        j["modes"][m.mode.name] = e;
-        // Q against Cook's, signed: "equal Q" is a judgement the reader makes from the number.
-        std::string q_delta = "-";
-        if (cook && m.pr_frames && cook->pr_frames) {
-          char text[32];
-          std::snprintf(text, sizeof text, "%+.5f", m.quality - cook->quality);
-          q_delta = text;
-        }
-        std::printf("%-13s %10.0f %10s %9.2f %9s %7.4f %8s %9.3f %8.1f%%\n", m.mode.name.c_str(), m.triangles,
-                    cook ? (std::to_string(int(std::lround(geo * 100))) + "%").c_str() : "-", m.gpu_frame_ms,
-                    cook ? (std::to_string(int(std::lround(time * 100))) + "%").c_str() : "-", m.quality,
-                    q_delta.c_str(), m.lambda,
-                    100.0 * (raw.triangles_per_second() > 0 ? tris_per_s / raw.triangles_per_second() : 0.0));
-        char row[512];
-        auto cell = [](bool known, const char* format, double value) {  // "-" for what was not measured
-          char text[32] = "-";
-          if (known) std::snprintf(text, sizeof text, format, value);
-          return std::string(text);
-        };
-        auto vs_cook = [&](const char* format, double value) { return cell(cook != nullptr, format, value); };
-        std::snprintf(row, sizeof row, "| %s | %.0f | %s | %.0f | %s | %.2f | %s | %s | %s | %s | %.3f | %.1f%% |\n",
-                      m.mode.name.c_str(), m.triangles, vs_cook("%.1f%%", 100.0 * geo).c_str(), m.leaves,
-                      vs_cook("%.1f%%", 100.0 * leaf_ratio).c_str(), m.gpu_frame_ms,
-                      vs_cook("%.1f%%", 100.0 * time).c_str(), vs_cook("%.2fx", time > 0 ? 1.0 / time : 0.0).c_str(),
-                      cell(m.pr_frames > 0, "%.4f", m.quality).c_str(),
-                      q_delta.c_str(), m.lambda,
-                      100.0 * (raw.triangles_per_second() > 0 ? tris_per_s / raw.triangles_per_second() : 0.0));
-        md << row;
-        write_text(out / ("frames_" + m.mode.name + ".csv"), frames_csv(m));
-      }
-      for (const ModeSummary& m : results) {
-        if (!m.mode.occlusion) continue;
-        char row[640];
-        std::snprintf(row, sizeof row,
-                      "\nOcclusion feedback (%s), mean per frame: %.0f leaves saved (%.1f %% of what the mode alone "
-                      "draws), %.0f triangles saved (%.1f %%), %.1f trees culled; depth pyramid %.3f ms + cull %.3f ms "
-                      "= %.2f %% of the GPU frame (goal <= 5 %%).\n",
-                      m.mode.name.c_str(), m.leaves_saved, 100.0 * m.leaves_saved_share(), m.triangles_saved,
-                      100.0 * m.triangles_saved_share(), m.occluded, m.gpu_pyramid_ms, m.gpu_cull_ms,
-                      100.0 * m.occlusion_gpu_share());
-        md << row;
-        std::printf("%s", row + 1);
-      }
-      write_text(out / "summary.json", j.dump(2) + "\n");
-      md << "\nGoals (Neubert 2012 §7.6, forest issue 9): >= 45 % less geometry than Cook and >= 2x its frame rate at equal Q "
-            "(paper: 30.1 %, ~1.67x); Q - Q_cook >= -0.001 is taken as equal Q. Plots: triangles.png, frame_time.png; per frame: frames_<mode>.csv.\n";
-      write_text(out / "summary.md", md.str());
-      write_path_plot(results, "tree triangles per frame (" + label + ")", "triangles",
-                      [](const BenchFrame& f) { return double(f.tree_triangles); }, out / "triangles.png");
-      write_path_plot(results, "GPU frame time (" + label + ")", "ms",
-                      [](const BenchFrame& f) { return f.stats.frame_ms; }, out / "frame_time.png");
-      std::printf("wrote %s: summary.json, summary.md, frames_<mode>.csv, triangles.png, frame_time.png\n", out.c_str());
-    }
-  } catch (...) {
-    vk::destroy_context(ctx);
-    throw;
-  }
-  vk::destroy_context(ctx);
-  return code;
+  CommandContext context(context_options(args.device, args.validate));
+  vk::Context& ctx = context.ctx;
+  cache.ctx = &ctx;
+  SceneBuildOptions build;
+  build.species = cached_species_source(cache);
+  Scene scene = build_scene(plan.desc, build);
+  std::vector<ModeSummary> results = play_modes(ctx, scene, build, plan, args);
+  ThroughputResult raw = probe_throughput(ctx, plan.desc, args.probe_instances);
+  if (validation_failed(ctx, "results", true)) return 1;
+  write_bench_results({args, plan, results, find_cook(results), scene.instances.size(), raw,
+                       ctx.properties.deviceName, driver_name(ctx)});
+  return 0;
 }
 
 }  // namespace forest::app

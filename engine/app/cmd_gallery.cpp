@@ -1,5 +1,6 @@
 #include <cstdio>
 
+#include "engine/app/app_common.h"
 #include "engine/app/commands.h"
 #include "engine/app/progress.h"
 #include "engine/tools/gallery/gallery.h"
@@ -13,36 +14,21 @@ int run_gallery(const GalleryArgs& args) {
   GalleryOptions options;
   options.size = args.size;
   options.columns = args.columns;
-  vk::Context ctx;
-  vk::ContextOptions ctx_options;
-  ctx_options.device = args.device;
-  ctx_options.validation = vk::validation_from_env();
-  int code = 0;
-  try {
-    vk::create_context(ctx, ctx_options);
-    std::vector<GalleryEntry> entries;
-    FrameImage sheet;
-    {
-      ProgressBar bar("gallery");
-      sheet = render_gallery(ctx, presets, options, &entries,
-                             [&](size_t done, size_t total) { bar.update(double(done) / double(total)); });
-    }
-    if (ctx.validation_messages > 0) {
-      std::fprintf(stderr, "forest: %u Vulkan validation message(s); no image written\n", ctx.validation_messages.load());
-      code = 1;
-    } else {
-      write_image(sheet, args.out);
-      std::printf("%-24s %-14s %10s %8s %8s\n", "preset", "method", "triangles", "leaves", "height");
-      for (const GalleryEntry& e : entries)
-        std::printf("%-24s %-14s %10zu %8zu %7.1fm\n", e.name.c_str(), e.method.c_str(), e.triangles, e.leaves, e.height);
-      std::printf("wrote %s: %zu presets, %u x %u pixels\n", args.out.c_str(), entries.size(), sheet.width, sheet.height);
-    }
-  } catch (...) {
-    vk::destroy_context(ctx);
-    throw;
+  CommandContext context(context_options(args.device, false));
+  std::vector<GalleryEntry> entries;
+  FrameImage sheet;
+  {
+    ProgressBar bar("gallery");
+    sheet = render_gallery(context.ctx, presets, options, &entries,
+                           [&](size_t done, size_t total) { bar.update(double(done) / double(total)); });
   }
-  vk::destroy_context(ctx);
-  return code;
+  if (validation_failed(context.ctx, "image")) return 1;
+  write_image(sheet, args.out);
+  std::printf("%-24s %-14s %10s %8s %8s\n", "preset", "method", "triangles", "leaves", "height");
+  for (const GalleryEntry& e : entries)
+    std::printf("%-24s %-14s %10zu %8zu %7.1fm\n", e.name.c_str(), e.method.c_str(), e.triangles, e.leaves, e.height);
+  std::printf("wrote %s: %zu presets, %u x %u pixels\n", args.out.c_str(), entries.size(), sheet.width, sheet.height);
+  return 0;
 }
 
 }  // namespace forest::app

@@ -1,8 +1,8 @@
 #include <cstdio>
 #include <fstream>
-#include <span>
 #include <sstream>
 
+#include "engine/app/app_common.h"
 #include "engine/app/commands.h"
 #include "generators/asset/asset_io.h"
 #include "generators/core/input_error.h"
@@ -57,7 +57,7 @@ int run_generate(const GenerateArgs& args) {
   }
   if (want_model) save_glb(model, args.out);
   if (!svg.empty()) {
-    write_file_atomic(args.svg, std::span(reinterpret_cast<const uint8_t*>(svg.data()), svg.size()));
+    write_text_file(args.svg, svg);
     size_t curves = 0;
     for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++curves;
     std::printf("wrote %s: %zu curves\n", args.svg.c_str(), curves);
@@ -73,8 +73,8 @@ int run_generate(const GenerateArgs& args) {
 
 int run_make_inputs(const MakeInputsArgs& args) {
   make_inputs(args.out);
-  for (const MethodEntry& m : method_table())
-    if (m.make_inputs) std::printf("wrote %s/%s/\n", args.out.c_str(), m.id);
+  for (const MethodEntry* m : method_table())
+    if (m->make_inputs) std::printf("wrote %s/%s/\n", args.out.c_str(), m->id);
   return 0;
 }
 

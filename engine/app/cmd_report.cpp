@@ -3,6 +3,7 @@
 #include <fstream>
 #include <map>
 
+#include "engine/app/app_common.h"
 #include "engine/app/commands.h"
 #include "engine/tools/report/plot.h"
 #include "generators/asset/asset_io.h"
@@ -12,17 +13,13 @@ namespace forest::app {
 
 namespace {
 
-void write_text_atomic(const std::filesystem::path& path, const std::string& text) {
-  write_file_atomic(path, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
-}
-
 glm::vec3 ramp(float t) { return glm::mix(glm::vec3(0.85f, 0.2f, 0.1f), glm::vec3(0.1f, 0.3f, 0.85f), t); }
 
 }  // namespace
 
 int run_report(const ReportArgs& args) {
   TreeModel model = load_glb(args.model);
-  std::optional<PrTables> tables = read_pr_tables(model.meta, args.model);
+  const std::optional<PrTables>& tables = model.bake.pr_tables;  // validated by load_glb
   if (!tables) throw InputError(args.model, 0, "extras.forest.pr_tables", "model is not baked (run forest bake first)");
   std::filesystem::path dir = args.out;
   std::error_code ec;
@@ -33,14 +30,8 @@ int run_report(const ReportArgs& args) {
 
   // PR diagram (Fig 7.2): for a few λ, the (R, P) points over the scales tried.
   std::map<float, std::vector<std::pair<float, glm::vec2>>> by_lambda;  // λ -> (s, (R, P))
-  if (model.meta.contains("pr_samples") && model.meta["pr_samples"].is_array())
-    for (const auto& s : model.meta["pr_samples"])
-      if (s.is_array() && s.size() == 4) {
-        for (const auto& x : s)  // finite and within float range before narrowing
-          if (!x.is_number() || !(std::abs(x.get<double>()) <= 1e6))
-            throw InputError(args.model, 0, "extras.forest.pr_samples", "expected [lambda, s, precision, recall] numbers");
-        by_lambda[s[0].get<float>()].push_back({s[1].get<float>(), {s[3].get<float>(), s[2].get<float>()}});
-      }
+  for (const PrPoint& s : model.bake.pr_samples)
+    by_lambda[s.lambda].push_back({s.scale, {float(s.recall), float(s.precision)}});
   Plot pr{"PR diagram: " + name, "recall", "precision", {0, 1}, {0, 1}, {}};
   std::string samples_csv = "lambda,s,precision,recall\n";
   const float shown[] = {0.1f, 0.2f, 0.3f, 0.5f, 0.7f, 0.9f};
@@ -64,9 +55,10 @@ int run_report(const ReportArgs& args) {
   Plot sp{"leaf area scale: " + name, "lambda", "s", {0, 1}, {0, 12}, {}};
   PlotSeries s_opt{"s_opt (PR)", {}, {0.1f, 0.3f, 0.85f}, true, true}, inv{"1/lambda (Cook)", {}, {0.85f, 0.2f, 0.1f}};
   std::string table_csv = "lambda,s_opt,q_opt,q_inverse\n";
-  for (size_t i = 0; i < t.lambda.size(); ++i) {
-    if (t.lambda[i] > 0) s_opt.points.push_back({t.lambda[i], t.s_opt[i]}), inv.points.push_back({t.lambda[i], 1.0f / t.lambda[i]});
-    table_csv += std::to_string(t.lambda[i]) + "," + std::to_string(t.s_opt[i]) + "," + std::to_string(t.q_opt[i]) +
+  for (uint32_t i = 0; i < S_SAMPLES; ++i) {
+    const float l = pr_lambda(i);
+    if (l > 0) s_opt.points.push_back({l, t.s_opt[i]}), inv.points.push_back({l, 1.0f / l});
+    table_csv += std::to_string(l) + "," + std::to_string(t.s_opt[i]) + "," + std::to_string(t.q_opt[i]) +
                  "," + std::to_string(t.q_inverse[i]) + "\n";
   }
   sp.series = {s_opt, inv};
@@ -76,17 +68,18 @@ int run_report(const ReportArgs& args) {
   Plot lp{"detail level vs distance: " + name, "normalized distance d", "lambda", {0, 1}, {0, 1}, {}};
   PlotSeries lo{"lambda_opt", {}, {0.1f, 0.3f, 0.85f}, true, true}, lc{"(1-d)^2 (Cook)", {}, {0.85f, 0.2f, 0.1f}};
   std::string d_csv = "d,lambda_opt,lambda_cook\n";
-  for (size_t j = 0; j < t.d.size(); ++j) {
-    lo.points.push_back({t.d[j], t.lambda_opt[j]});
-    lc.points.push_back({t.d[j], t.lambda_cook[j]});
-    d_csv += std::to_string(t.d[j]) + "," + std::to_string(t.lambda_opt[j]) + "," + std::to_string(t.lambda_cook[j]) + "\n";
+  for (uint32_t j = 0; j < D_SAMPLES; ++j) {
+    const float d = pr_d(j), cook = pr_lambda_cook(j);
+    lo.points.push_back({d, t.lambda_opt[j]});
+    lc.points.push_back({d, cook});
+    d_csv += std::to_string(d) + "," + std::to_string(t.lambda_opt[j]) + "," + std::to_string(cook) + "\n";
   }
   lp.series = {lo, lc};
   write_plot(lp, dir / "lambda_vs_distance.png");
 
-  write_text_atomic(dir / "pr_samples.csv", samples_csv);
-  write_text_atomic(dir / "scale_table.csv", table_csv);
-  write_text_atomic(dir / "lambda_table.csv", d_csv);
+  write_text_file(dir / "pr_samples.csv", samples_csv);
+  write_text_file(dir / "scale_table.csv", table_csv);
+  write_text_file(dir / "lambda_table.csv", d_csv);
   std::printf("wrote %s/{pr_diagram,scale_vs_lambda,lambda_vs_distance}.png and 3 CSV files\n", dir.c_str());
   return 0;
 }

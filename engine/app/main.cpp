@@ -1,6 +1,10 @@
 // forest: offline tree generators and the real-time forest renderer, one executable.
 #include <cstdio>
 #include <exception>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,150 +14,212 @@
 
 using namespace forest;
 
-int main(int argc, char** argv) {
-  CLI::App cli{"forest: tree generators and a GPU-pruned forest renderer (Vulkan 1.3)"};
-  cli.require_subcommand(1);
-  cli.set_version_flag("--version", "forest 0.1.0");
+namespace {
 
-  app::InfoArgs info;
-  auto* info_cmd = cli.add_subcommand("info", "List Vulkan devices, pick one and check the features the engine relies on");
-  info_cmd->add_option("--device", info.device, "Device index or name substring (default: $FOREST_DEVICE, then discrete GPU first)");
+// One subcommand: its CLI11 node, and what runs when the command line chose it. The
+// arguments CLI11 parses into are shared with the `run` closure, so they outlive the parse.
+struct Command {
+  CLI::App* cli = nullptr;
+  std::function<int()> run;
+};
 
-  app::GenerateArgs gen;
-  uint64_t gen_seed = 0;
-  auto* gen_cmd = cli.add_subcommand("generate", "Generate a tree model from a species preset and write a .glb asset");
-  gen_cmd->add_option("--species", gen.species, "Species preset (TOML)")->check(CLI::ExistingFile);
-  gen_cmd->add_option("--method", gen.method, "Modeling method id (uses its built-in preset without --species)");
-  auto* seed_opt = gen_cmd->add_option("--seed", gen_seed, "Random seed (overrides the preset's)");
-  gen_cmd->add_option("--out", gen.out, "Output .glb");
-  gen_cmd->add_option("--svg", gen.svg, "Also write the 2D curves as SVG (method magnetic, mode 2d)");
+constexpr const char* kDeviceHelp = "Device index or name substring";
+constexpr const char* kCacheHelp = "Species cache folder (default: $FOREST_CACHE or ~/.cache/forest)";
+constexpr const char* kValidateHelp =
+    "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)";
 
-  app::MakeInputsArgs inputs;
-  auto* inputs_cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
-  inputs_cmd->add_option("--out", inputs.out, "Output folder (one subfolder per method)")->required();
+// --width / --height over the scene's [render] size (render, walk, bench).
+void add_size_options(CLI::App* cmd, std::optional<uint32_t>& width, std::optional<uint32_t>& height) {
+  cmd->add_option("--width", width, "Override [render].width")->check(CLI::Range(16, 8192));
+  cmd->add_option("--height", height, "Override [render].height")->check(CLI::Range(16, 8192));
+}
 
-  app::LearnArgs learn;
-  uint64_t learn_seed = 0;
-  size_t learn_trees = 0;
-  auto* learn_cmd = cli.add_subcommand("learn", "Learn plantons and transitions from sample trees (method plantons) into a model file");
-  learn_cmd->add_option("--out", learn.out, "Output model (.json)")->required();
-  auto* learn_seed_opt = learn_cmd->add_option("--seed", learn_seed, "Seed of k-means and of the sample trees (default 1)");
-  learn_cmd->add_option("--species", learn.species, "Sample trees from these species presets (any method)")->check(CLI::ExistingFile);
-  learn_cmd->add_option("--samples", learn.samples, "Sample file (JSON trees, see forest make-inputs)")->check(CLI::ExistingFile);
-  learn_cmd->add_flag("--ground-truth", learn.ground_truth, "Sample trees from the synthetic ground truth (plantons T, P, S, L)");
-  auto* learn_trees_opt = learn_cmd->add_option("--trees", learn_trees, "Trees per species, or ground-truth trees")->check(CLI::Range(1, 64));
-  learn_cmd->add_option("--stem-plantons", learn.stem_plantons, "k-means k for stems")->check(CLI::Range(1, 500));
-  learn_cmd->add_option("--leaf-plantons", learn.leaf_plantons, "k-means k for leaves")->check(CLI::Range(1, 500));
-  learn_cmd->add_option("--e-max", learn.e_max, "Organs farther than this from their planton start a new one")->check(CLI::Range(0.01, 1e6));
+// A subcommand whose options CLI11 parses straight into `args`, run with them once parsed.
+template <typename Args>
+Command command(CLI::App* cmd, std::shared_ptr<Args> args, int (*run)(const Args&)) {
+  return {cmd, [args, run] { return run(*args); }};
+}
 
-  app::PreviewArgs preview;
-  auto* preview_cmd = cli.add_subcommand("preview", "Render a turntable contact sheet of a .glb model");
-  preview_cmd->add_option("model", preview.model, "Model (.glb)")->required();
-  preview_cmd->add_option("--out", preview.out, "Output image (.png)")->required();
-  preview_cmd->add_option("--size", preview.size, "Pixels per view")->check(CLI::Range(32, 4096));
-  preview_cmd->add_option("--views", preview.views, "Number of views around the model")->check(CLI::Range(1, 64));
-  preview_cmd->add_option("--device", preview.device, "Device index or name substring");
+Command add_info(CLI::App& cli) {
+  auto args = std::make_shared<app::InfoArgs>();
+  auto* cmd = cli.add_subcommand("info", "List Vulkan devices, pick one and check the features the engine relies on");
+  cmd->add_option("--device", args->device, "Device index or name substring (default: $FOREST_DEVICE, then discrete GPU first)");
+  return command(cmd, args, app::run_info);
+}
 
-  app::GalleryArgs gallery;
-  auto* gallery_cmd = cli.add_subcommand("gallery", "Render every species preset into one labelled contact sheet");
-  gallery_cmd->add_option("--out", gallery.out, "Output image (.png)")->required();
-  gallery_cmd->add_option("--species-dir", gallery.species_dir, "Folder of species presets (default: scenes/species)");
-  gallery_cmd->add_option("--size", gallery.size, "Pixels per preset")->check(CLI::Range(32, 2048));
-  gallery_cmd->add_option("--columns", gallery.columns, "Presets per row (default: about square)")->check(CLI::Range(1, 64));
-  gallery_cmd->add_option("--device", gallery.device, "Device index or name substring");
+Command add_generate(CLI::App& cli) {
+  auto args = std::make_shared<app::GenerateArgs>();
+  auto* cmd = cli.add_subcommand("generate", "Generate a tree model from a species preset and write a .glb asset");
+  cmd->add_option("--species", args->species, "Species preset (TOML)")->check(CLI::ExistingFile);
+  cmd->add_option("--method", args->method, "Modeling method id (uses its built-in preset without --species)");
+  cmd->add_option("--seed", args->seed, "Random seed (overrides the preset's)");
+  cmd->add_option("--out", args->out, "Output .glb");
+  cmd->add_option("--svg", args->svg, "Also write the 2D curves as SVG (method magnetic, mode 2d)");
+  return command(cmd, args, app::run_generate);
+}
 
-  app::BakeArgs bake;
-  uint64_t bake_seed = 0;
-  auto* bake_cmd = cli.add_subcommand("bake", "Add the metaball hull, priority-sorted leaves and PR-measured lambda/scale tables to a model");
-  bake_cmd->add_option("model", bake.model, "Model (.glb)")->required();
-  bake_cmd->add_option("--out", bake.out, "Baked model (default: in place)");
-  bake_cmd->add_option("--priority", bake.priority, "Leaf order: random, density, orientation, combined, layered");
-  auto* bake_seed_opt = bake_cmd->add_option("--seed", bake_seed, "Seed of the random parts (default: the model's)");
-  bake_cmd->add_option("--views", bake.views, "Views averaged by the PR measurement")->check(CLI::Range(1, 64));
-  bake_cmd->add_option("--resolution", bake.resolution, "Pixels of each coverage render")->check(CLI::Range(32, 4096));
-  bake_cmd->add_option("--device", bake.device, "Device index or name substring");
+Command add_make_inputs(CLI::App& cli) {
+  auto args = std::make_shared<app::MakeInputsArgs>();
+  auto* cmd = cli.add_subcommand("make-inputs", "Write synthetic inputs (masks, poses, strokes, samples) for every method");
+  cmd->add_option("--out", args->out, "Output folder (one subfolder per method)")->required();
+  return command(cmd, args, app::run_make_inputs);
+}
 
-  app::ReportArgs report;
-  auto* report_cmd = cli.add_subcommand("report", "Plot a baked model's PR diagram, s(lambda) and lambda(d) as PNG + CSV");
-  report_cmd->add_option("model", report.model, "Baked model (.glb)")->required();
-  report_cmd->add_option("--out", report.out, "Output folder")->required();
+Command add_learn(CLI::App& cli) {
+  auto args = std::make_shared<app::LearnArgs>();
+  auto* cmd = cli.add_subcommand("learn", "Learn plantons and transitions from sample trees (method plantons) into a model file");
+  cmd->add_option("--out", args->out, "Output model (.json)")->required();
+  cmd->add_option("--seed", args->seed, "Seed of k-means and of the sample trees (default 1)");
+  cmd->add_option("--species", args->species, "Sample trees from these species presets (any method)")->check(CLI::ExistingFile);
+  cmd->add_option("--samples", args->samples, "Sample file (JSON trees, see forest make-inputs)")->check(CLI::ExistingFile);
+  cmd->add_flag("--ground-truth", args->ground_truth, "Sample trees from the synthetic ground truth (plantons T, P, S, L)");
+  cmd->add_option("--trees", args->trees, "Trees per species, or ground-truth trees")->check(CLI::Range(1, 64));
+  cmd->add_option("--stem-plantons", args->stem_plantons, "k-means k for stems")->check(CLI::Range(1, 500));
+  cmd->add_option("--leaf-plantons", args->leaf_plantons, "k-means k for leaves")->check(CLI::Range(1, 500));
+  cmd->add_option("--e-max", args->e_max, "Organs farther than this from their planton start a new one")->check(CLI::Range(0.01, 1e6));
+  return command(cmd, args, app::run_learn);
+}
 
-  app::RenderArgs render;
-  uint32_t width = 0, height = 0;
-  auto* render_cmd = cli.add_subcommand("render", "Render a scene headless to an image");
-  render_cmd->add_option("scene", render.scene, "Scene file (TOML)")->required();
-  render_cmd->add_option("--out", render.out, "Output image (.png)")->required();
-  render_cmd->add_option("--device", render.device, "Device index or name substring");
-  auto* width_opt = render_cmd->add_option("--width", width, "Override [render].width")->check(CLI::Range(16, 8192));
-  auto* height_opt = render_cmd->add_option("--height", height, "Override [render].height")->check(CLI::Range(16, 8192));
-  std::string occlusion;
-  auto* occlusion_opt = render_cmd->add_option("--occlusion", occlusion,
-                                               "Depth-buffer occlusion feedback (overrides [render].occlusion)")
+Command add_preview(CLI::App& cli) {
+  auto args = std::make_shared<app::PreviewArgs>();
+  auto* cmd = cli.add_subcommand("preview", "Render a turntable contact sheet of a .glb model");
+  cmd->add_option("model", args->model, "Model (.glb)")->required();
+  cmd->add_option("--out", args->out, "Output image (.png)")->required();
+  cmd->add_option("--size", args->size, "Pixels per view")->check(CLI::Range(32, 4096));
+  cmd->add_option("--views", args->views, "Number of views around the model")->check(CLI::Range(1, 64));
+  cmd->add_option("--device", args->device, kDeviceHelp);
+  return command(cmd, args, app::run_preview);
+}
+
+Command add_gallery(CLI::App& cli) {
+  auto args = std::make_shared<app::GalleryArgs>();
+  auto* cmd = cli.add_subcommand("gallery", "Render every species preset into one labelled contact sheet");
+  cmd->add_option("--out", args->out, "Output image (.png)")->required();
+  cmd->add_option("--species-dir", args->species_dir, "Folder of species presets (default: scenes/species)");
+  cmd->add_option("--size", args->size, "Pixels per preset")->check(CLI::Range(32, 2048));
+  cmd->add_option("--columns", args->columns, "Presets per row (default: about square)")->check(CLI::Range(1, 64));
+  cmd->add_option("--device", args->device, kDeviceHelp);
+  return command(cmd, args, app::run_gallery);
+}
+
+Command add_bake(CLI::App& cli) {
+  auto args = std::make_shared<app::BakeArgs>();
+  auto* cmd = cli.add_subcommand("bake", "Add the metaball hull, priority-sorted leaves and PR-measured lambda/scale tables to a model");
+  cmd->add_option("model", args->model, "Model (.glb)")->required();
+  cmd->add_option("--out", args->out, "Baked model (default: in place)");
+  cmd->add_option("--priority", args->priority, "Leaf order: random, density, orientation, combined, layered");
+  cmd->add_option("--seed", args->seed, "Seed of the random parts (default: the model's)");
+  cmd->add_option("--views", args->views, "Views averaged by the PR measurement")->check(CLI::Range(1, 64));
+  cmd->add_option("--resolution", args->resolution, "Pixels of each coverage render")->check(CLI::Range(32, 4096));
+  cmd->add_option("--device", args->device, kDeviceHelp);
+  return command(cmd, args, app::run_bake);
+}
+
+Command add_report(CLI::App& cli) {
+  auto args = std::make_shared<app::ReportArgs>();
+  auto* cmd = cli.add_subcommand("report", "Plot a baked model's PR diagram, s(lambda) and lambda(d) as PNG + CSV");
+  cmd->add_option("model", args->model, "Baked model (.glb)")->required();
+  cmd->add_option("--out", args->out, "Output folder")->required();
+  return command(cmd, args, app::run_report);
+}
+
+Command add_render(CLI::App& cli) {
+  struct Parsed {
+    app::RenderArgs args;
+    std::string occlusion;  // on | off, into args.occlusion
+  };
+  auto p = std::make_shared<Parsed>();
+  app::RenderArgs& a = p->args;
+  auto* cmd = cli.add_subcommand("render", "Render a scene headless to an image");
+  cmd->add_option("scene", a.scene, "Scene file (TOML)")->required();
+  cmd->add_option("--out", a.out, "Output image (.png)")->required();
+  cmd->add_option("--device", a.device, kDeviceHelp);
+  add_size_options(cmd, a.width, a.height);
+  auto* occlusion_opt = cmd->add_option("--occlusion", p->occlusion,
+                                        "Depth-buffer occlusion feedback (overrides [render].occlusion)")
                             ->check(CLI::IsMember({"on", "off"}));
-  render_cmd->add_option("--mode", render.mode, "Prune mode (overrides [render].mode)")
-      ->check(CLI::IsMember({"full", "cook", "opt"}));
-  render_cmd->add_option("--view", render.view, "shaded, lambda (trees by detail level) or mask (coverage for forest compare)")
+  cmd->add_option("--mode", a.mode, "Prune mode (overrides [render].mode)")
+      ->check(CLI::IsMember(std::vector<std::string>(prune_mode_names().begin(), prune_mode_names().end())));
+  cmd->add_option("--view", a.view, "shaded, lambda (trees by detail level) or mask (coverage for forest compare)")
       ->check(CLI::IsMember({"shaded", "lambda", "mask"}));
-  render_cmd->add_flag("--stats", render.stats, "Print GPU statistics and timings");
-  uint32_t render_frame = 0;
-  double render_time = 0.0;
-  render_cmd->add_option("--path", render.path, "Camera path ([[path]] name) to take the camera from");
-  auto* frame_opt = render_cmd->add_option("--frame", render_frame, "Frame of --path (time = frame / fps)");
-  auto* time_opt = render_cmd->add_option("--time", render_time, "Seconds along --path")->check(CLI::Range(0.0, 1e6));
+  cmd->add_flag("--stats", a.stats, "Print GPU statistics and timings");
+  cmd->add_option("--path", a.path, "Camera path ([[path]] name) to take the camera from");
+  auto* frame_opt = cmd->add_option("--frame", a.frame, "Frame of --path (time = frame / fps)");
+  auto* time_opt = cmd->add_option("--time", a.time, "Seconds along --path")->check(CLI::Range(0.0, 1e6));
   frame_opt->excludes(time_opt);
-  render_cmd->add_option("--cache", render.cache, "Species cache folder (default: $FOREST_CACHE or ~/.cache/forest)");
-  render_cmd->add_flag("--validate", render.validate,
-                       "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
+  cmd->add_option("--cache", a.cache, kCacheHelp);
+  cmd->add_flag("--validate", a.validate, kValidateHelp);
+  return {cmd, [p, occlusion_opt] {
+            if (*occlusion_opt) p->args.occlusion = p->occlusion == "on";
+            return app::run_render(p->args);
+          }};
+}
 
-  app::CompareArgs compare;
-  double min_quality = 0;
-  auto* compare_cmd = cli.add_subcommand("compare", "Precision, Recall and Q of a coverage image against a reference, with a tp/fp/fn picture");
-  compare_cmd->add_option("reference", compare.reference, "Reference coverage image (full detail)")->required()->check(CLI::ExistingFile);
-  compare_cmd->add_option("test", compare.test, "Test coverage image (pruned)")->required()->check(CLI::ExistingFile);
-  compare_cmd->add_option("--diff", compare.diff, "Write the Fig 7.1 picture: tp light green, fp red, fn dark green");
-  compare_cmd->add_option("--threshold", compare.threshold, "A pixel is covered from this value of its brightest channel")->check(CLI::Range(1, 255));
-  auto* min_quality_opt = compare_cmd->add_option("--min-quality", min_quality, "Exit 3 when Q is below this")->check(CLI::Range(0.0, 1.0));
-  app::WalkArgs walk;
-  uint32_t walk_width = 0, walk_height = 0, walk_frames = 0, walk_resize_at = 0;
-  auto* walk_cmd = cli.add_subcommand("walk", "Walk through a scene in a window (fly camera, HUD, prune modes)");
-  walk_cmd->add_option("scene", walk.scene, "Scene file (TOML)")->required();
-  walk_cmd->add_option("--device", walk.device, "Device index or name substring");
-  auto* walk_width_opt = walk_cmd->add_option("--width", walk_width, "Override [render].width")->check(CLI::Range(16, 8192));
-  auto* walk_height_opt = walk_cmd->add_option("--height", walk_height, "Override [render].height")->check(CLI::Range(16, 8192));
-  auto* walk_frames_opt = walk_cmd->add_option("--frames", walk_frames, "Quit after N frames (scripted run, fixed 1/30 s steps)")
-                              ->check(CLI::Range(1, 1000000));
-  walk_cmd->add_option("--screenshot", walk.screenshot, "PNG of the last frame with --frames; else where [C] writes");
-  walk_cmd->add_flag("--fly", walk.fly, "Scripted camera move: fly forward while turning");
-  walk_cmd->add_flag("--play", walk.play, "Start playing the scene's camera path (as if [P] was pressed)");
-  auto* walk_resize_opt = walk_cmd->add_option("--resize-at", walk_resize_at, "Scripted: resize the window at this frame")
-                              ->check(CLI::Range(0, 1000000));
-  walk_cmd->add_flag("--no-hud", walk.no_hud, "Start with the HUD hidden ([H] toggles)");
-  walk_cmd->add_option("--present", walk.present, "Copy to the window by blit, or by a shader pass (auto: blit where supported)")
+Command add_compare(CLI::App& cli) {
+  auto args = std::make_shared<app::CompareArgs>();
+  auto* cmd = cli.add_subcommand("compare", "Precision, Recall and Q of a coverage image against a reference, with a tp/fp/fn picture");
+  cmd->add_option("reference", args->reference, "Reference coverage image (full detail)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("test", args->test, "Test coverage image (pruned)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--diff", args->diff, "Write the Fig 7.1 picture: tp light green, fp red, fn dark green");
+  cmd->add_option("--threshold", args->threshold, "A pixel is covered from this value of its brightest channel")->check(CLI::Range(1, 255));
+  cmd->add_option("--min-quality", args->min_quality, "Exit 3 when Q is below this")->check(CLI::Range(0.0, 1.0));
+  return command(cmd, args, app::run_compare);
+}
+
+Command add_walk(CLI::App& cli) {
+  auto args = std::make_shared<app::WalkArgs>();
+  app::WalkArgs& a = *args;
+  auto* cmd = cli.add_subcommand("walk", "Walk through a scene in a window (fly camera, HUD, prune modes)");
+  cmd->add_option("scene", a.scene, "Scene file (TOML)")->required();
+  cmd->add_option("--device", a.device, kDeviceHelp);
+  add_size_options(cmd, a.width, a.height);
+  cmd->add_option("--frames", a.frames, "Quit after N frames (scripted run, fixed 1/30 s steps)")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--screenshot", a.screenshot, "PNG of the last frame with --frames; else where [C] writes");
+  cmd->add_flag("--fly", a.fly, "Scripted camera move: fly forward while turning");
+  cmd->add_flag("--play", a.play, "Start playing the scene's camera path (as if [P] was pressed)");
+  cmd->add_option("--resize-at", a.resize_at, "Scripted: resize the window at this frame")->check(CLI::Range(0, 1000000));
+  cmd->add_flag("--no-hud", a.no_hud, "Start with the HUD hidden ([H] toggles)");
+  cmd->add_option("--present", a.present, "Copy to the window by blit, or by a shader pass (auto: blit where supported)")
       ->check(CLI::IsMember({"auto", "blit", "pass"}));
-  walk_cmd->add_flag("--validate", walk.validate,
-                     "Enable the Khronos validation layer; any warning or error fails (also FOREST_VALIDATION=1)");
+  cmd->add_flag("--validate", a.validate, kValidateHelp);
+  return command(cmd, args, app::run_walk);
+}
 
-  app::BenchArgs bench;
-  uint32_t bench_width = 0, bench_height = 0;
-  auto* bench_cmd = cli.add_subcommand("bench", "Play a scene's camera path in several prune modes: per-frame CSV, JSON summary vs Cook, plots");
-  bench_cmd->add_option("scene", bench.scene, "Scene file (TOML) with a [[path]]")->required();
-  bench_cmd->add_option("--path", bench.path, "Camera path name (default: the first [[path]])");
-  bench_cmd->add_option("--modes", bench.modes, "Comma-separated: full, cook, opt, opt-combined, opt-occl");
-  auto* bench_frames_opt = bench_cmd->add_option("--frames", bench.frames, "At most N frames")->check(CLI::Range(1, 1000000));
-  auto* bench_every_opt = bench_cmd->add_option("--every", bench.every, "Play every k-th frame of the path")->check(CLI::Range(1, 1000000));
-  bench_frames_opt->excludes(bench_every_opt);
-  bench_cmd->add_option("--pr-every", bench.pr_every, "P, R, Q vs full detail at every k-th played frame (0: never)")->check(CLI::Range(0, 1000000));
-  bench_cmd->add_option("--occlusion-warmup", bench.occlusion_warmup,
-                        "Occlusion modes: path frames drawn (unrecorded) before each played one (default: all in between)")
+Command add_bench(CLI::App& cli) {
+  auto args = std::make_shared<app::BenchArgs>();
+  app::BenchArgs& a = *args;
+  auto* cmd = cli.add_subcommand("bench", "Play a scene's camera path in several prune modes: per-frame CSV, JSON summary vs Cook, plots");
+  cmd->add_option("scene", a.scene, "Scene file (TOML) with a [[path]]")->required();
+  cmd->add_option("--path", a.path, "Camera path name (default: the first [[path]])");
+  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, opt, opt-combined, opt-occl");
+  auto* frames_opt = cmd->add_option("--frames", a.frames, "At most N frames")->check(CLI::Range(1, 1000000));
+  auto* every_opt = cmd->add_option("--every", a.every, "Play every k-th frame of the path")->check(CLI::Range(1, 1000000));
+  frames_opt->excludes(every_opt);
+  cmd->add_option("--pr-every", a.pr_every, "P, R, Q vs full detail at every k-th played frame (0: never)")->check(CLI::Range(0, 1000000));
+  cmd->add_option("--occlusion-warmup", a.occlusion_warmup,
+                  "Occlusion modes: path frames drawn (unrecorded) before each played one (default: all in between)")
       ->check(CLI::Range(0, 1000000));
-  auto* bench_width_opt = bench_cmd->add_option("--width", bench_width, "Override [render].width")->check(CLI::Range(16, 8192));
-  auto* bench_height_opt = bench_cmd->add_option("--height", bench_height, "Override [render].height")->check(CLI::Range(16, 8192));
-  bench_cmd->add_option("--probe-instances", bench.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0, 4096));
-  bench_cmd->add_option("--out", bench.out, "Output folder (must exist)")->required();
-  bench_cmd->add_option("--device", bench.device, "Device index or name substring");
-  bench_cmd->add_option("--cache", bench.cache, "Species cache folder (default: $FOREST_CACHE or ~/.cache/forest)");
-  bench_cmd->add_flag("--validate", bench.validate, "Enable the Khronos validation layer (also FOREST_VALIDATION=1)");
+  add_size_options(cmd, a.width, a.height);
+  cmd->add_option("--probe-instances", a.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--out", a.out, "Output folder (must exist)")->required();
+  cmd->add_option("--device", a.device, kDeviceHelp);
+  cmd->add_option("--cache", a.cache, kCacheHelp);
+  cmd->add_flag("--validate", a.validate, "Enable the Khronos validation layer (also FOREST_VALIDATION=1)");
+  return command(cmd, args, app::run_bench);
+}
 
+// Every subcommand, in the order `forest --help` lists them.
+std::vector<Command> add_commands(CLI::App& cli) {
+  std::vector<Command> commands;
+  for (Command (*add)(CLI::App&) : {add_info, add_generate, add_make_inputs, add_learn, add_preview, add_gallery,
+                                    add_bake, add_report, add_render, add_compare, add_walk, add_bench})
+    commands.push_back(add(cli));
+  return commands;
+}
+
+// Parses the command line; an exit code when the run ends here (help, version, a usage
+// error), nothing when a subcommand is to run.
+std::optional<int> parse(CLI::App& cli, int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -170,50 +236,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "forest: %s (see forest --help)\n", msg.c_str());
     return 2;
   }
+  return std::nullopt;
+}
 
+// Runs the chosen subcommand; errors become one line on stderr and the exit code of
+// commands.h (2 bad input, 1 internal failure).
+int run_chosen(const std::vector<Command>& commands) {
   try {
-    if (*info_cmd) return app::run_info(info);
-    if (*gen_cmd) {
-      if (*seed_opt) gen.seed = gen_seed;
-      return app::run_generate(gen);
-    }
-    if (*inputs_cmd) return app::run_make_inputs(inputs);
-    if (*learn_cmd) {
-      if (*learn_seed_opt) learn.seed = learn_seed;
-      if (*learn_trees_opt) learn.trees = learn_trees;
-      return app::run_learn(learn);
-    }
-    if (*preview_cmd) return app::run_preview(preview);
-    if (*gallery_cmd) return app::run_gallery(gallery);
-    if (*bake_cmd) {
-      if (*bake_seed_opt) bake.seed = bake_seed;
-      return app::run_bake(bake);
-    }
-    if (*report_cmd) return app::run_report(report);
-    if (*compare_cmd) {
-      if (*min_quality_opt) compare.min_quality = min_quality;
-      return app::run_compare(compare);
-    }
-    if (*render_cmd) {
-      if (*width_opt) render.width = width;
-      if (*height_opt) render.height = height;
-      if (*occlusion_opt) render.occlusion = occlusion == "on";
-      if (*frame_opt) render.frame = render_frame;
-      if (*time_opt) render.time = render_time;
-      return app::run_render(render);
-    }
-    if (*bench_cmd) {
-      if (*bench_width_opt) bench.width = bench_width;
-      if (*bench_height_opt) bench.height = bench_height;
-      return app::run_bench(bench);
-    }
-    if (*walk_cmd) {
-      if (*walk_width_opt) walk.width = walk_width;
-      if (*walk_height_opt) walk.height = walk_height;
-      if (*walk_frames_opt) walk.frames = walk_frames;
-      if (*walk_resize_opt) walk.resize_at = walk_resize_at;
-      return app::run_walk(walk);
-    }
+    for (const Command& c : commands)
+      if (*c.cli) return c.run();
   } catch (const InputError& e) {
     std::fprintf(stderr, "forest: %s\n", e.what());
     return 2;
@@ -225,4 +256,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App cli{"forest: tree generators and a GPU-pruned forest renderer (Vulkan 1.3)"};
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", "forest 0.1.0");
+  std::vector<Command> commands = add_commands(cli);
+  if (std::optional<int> code = parse(cli, argc, argv)) return *code;
+  return run_chosen(commands);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 
 #include "engine/vk/pipelines.h"
 #include "gpu_types.h"
@@ -17,12 +18,6 @@ uint32_t previous_power_of_two(uint32_t v) {
   while (p * 2 <= v) p *= 2;
   return p;
 }
-
-struct LevelConstants {
-  int32_t source_size[2];
-  int32_t destination_size[2];
-  uint32_t first_level;
-};
 
 VkExtent2D level_size(const DepthPyramid& p, uint32_t level) {
   return {std::max(p.size.width >> level, 1u), std::max(p.size.height >> level, 1u)};
@@ -44,7 +39,7 @@ VkSampler create_sampler(vk::Context& ctx, bool min_reduction) {
 VkPipeline create_pipeline(vk::Context& ctx, VkPipelineLayout layout, bool minmax) {
   VkShaderModule cs = vk::create_shader(ctx, "depth_pyramid_comp");
   uint32_t constant = minmax ? 1u : 0u;
-  VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+  VkSpecializationMapEntry entry{SPEC_MINMAX_SAMPLER, 0, sizeof(uint32_t)};
   VkSpecializationInfo spec{1, &entry, sizeof(constant), &constant};
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs, "main",
@@ -66,6 +61,68 @@ bool supports_minmax_reduction(vk::Context& ctx) {
   vkGetPhysicalDeviceFormatProperties(ctx.physical, kPyramidFormat, &fp);
   return f12.samplerFilterMinmax && (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_MINMAX_BIT);
 }
+
+namespace {
+
+// One descriptor set per level: the source (depth buffer or level above) -> the level.
+void create_level_sets(vk::Context& ctx, DepthPyramid& p, VkImageView depth_view) {
+  VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  slci.bindingCount = uint32_t(std::size(kPyramidSetBindings));
+  slci.pBindings = kPyramidSetBindings;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &p.set_layout));
+  std::vector<VkDescriptorPoolSize> sizes;  // each binding of the table, once per level
+  for (const VkDescriptorSetLayoutBinding& b : kPyramidSetBindings) sizes.push_back({b.descriptorType, p.levels});
+  VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpci.maxSets = p.levels;
+  dpci.poolSizeCount = uint32_t(sizes.size());
+  dpci.pPoolSizes = sizes.data();
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &p.pool));
+  std::vector<VkDescriptorSetLayout> layouts(p.levels, p.set_layout);
+  VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  dsai.descriptorPool = p.pool;
+  dsai.descriptorSetCount = p.levels;
+  dsai.pSetLayouts = layouts.data();
+  p.sets.resize(p.levels);
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, p.sets.data()));
+  for (uint32_t i = 0; i < p.levels; ++i) {
+    // Level 0 reads depth texels exactly (nearest); the others reduce the level above.
+    VkDescriptorImageInfo source = i == 0 ? VkDescriptorImageInfo{p.point_sampler, depth_view,
+                                                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
+                                          : VkDescriptorImageInfo{p.reduce_sampler, p.level_views[i - 1],
+                                                                  VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorImageInfo destination{VK_NULL_HANDLE, p.level_views[i], VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+    w[0].dstSet = w[1].dstSet = p.sets[i];
+    w[0].dstBinding = PYRAMID_BINDING_SOURCE;
+    w[0].descriptorCount = 1;
+    w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w[0].pImageInfo = &source;
+    w[1].dstBinding = PYRAMID_BINDING_DESTINATION;
+    w[1].descriptorCount = 1;
+    w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    w[1].pImageInfo = &destination;
+    vkUpdateDescriptorSets(ctx.device, 2, w, 0, nullptr);
+  }
+}
+
+// GENERAL for life, cleared to "infinitely far" (0): until a frame has been reduced into it
+// the pyramid hides nothing.
+void clear_to_far(vk::Context& ctx, const DepthPyramid& p) {
+  vk::submit_now(ctx, [&](VkCommandBuffer cmd) {
+    vk::image_barrier(cmd, p.image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT, p.levels);
+    VkClearColorValue zero{};
+    VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, p.levels, 0, 1};
+    vkCmdClearColorImage(cmd, p.image.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                           VK_ACCESS_2_TRANSFER_READ_BIT);
+  });
+}
+
+}  // namespace
 
 DepthPyramid create_depth_pyramid(vk::Context& ctx, VkImageView depth_view, VkExtent2D depth_size, bool use_minmax) {
   DepthPyramid p;
@@ -92,78 +149,11 @@ DepthPyramid create_depth_pyramid(vk::Context& ctx, VkImageView depth_view, VkEx
   p.reduce_sampler = create_sampler(ctx, p.minmax_sampler);
   p.point_sampler = create_sampler(ctx, false);
 
-  VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-  };
-  VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  slci.bindingCount = 2;
-  slci.pBindings = bindings;
-  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &p.set_layout));
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, p.levels},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, p.levels}};
-  VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  dpci.maxSets = p.levels;
-  dpci.poolSizeCount = 2;
-  dpci.pPoolSizes = sizes;
-  VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &p.pool));
-  std::vector<VkDescriptorSetLayout> layouts(p.levels, p.set_layout);
-  VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  dsai.descriptorPool = p.pool;
-  dsai.descriptorSetCount = p.levels;
-  dsai.pSetLayouts = layouts.data();
-  p.sets.resize(p.levels);
-  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &dsai, p.sets.data()));
-  for (uint32_t i = 0; i < p.levels; ++i) {
-    // Level 0 reads depth texels exactly (nearest); the others reduce the level above.
-    VkDescriptorImageInfo source = i == 0 ? VkDescriptorImageInfo{p.point_sampler, depth_view,
-                                                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
-                                          : VkDescriptorImageInfo{p.reduce_sampler, p.level_views[i - 1],
-                                                                  VK_IMAGE_LAYOUT_GENERAL};
-    VkDescriptorImageInfo destination{VK_NULL_HANDLE, p.level_views[i], VK_IMAGE_LAYOUT_GENERAL};
-    VkWriteDescriptorSet w[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-    w[0].dstSet = w[1].dstSet = p.sets[i];
-    w[0].dstBinding = 0;
-    w[0].descriptorCount = 1;
-    w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    w[0].pImageInfo = &source;
-    w[1].dstBinding = 1;
-    w[1].descriptorCount = 1;
-    w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    w[1].pImageInfo = &destination;
-    vkUpdateDescriptorSets(ctx.device, 2, w, 0, nullptr);
-  }
-  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(LevelConstants)};
-  VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  plci.setLayoutCount = 1;
-  plci.pSetLayouts = &p.set_layout;
-  plci.pushConstantRangeCount = 1;
-  plci.pPushConstantRanges = &range;
-  VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &p.layout));
+  create_level_sets(ctx, p, depth_view);
+  p.layout = vk::create_pipeline_layout(ctx, p.set_layout, kPyramidPushRange);
   p.pipeline = create_pipeline(ctx, p.layout, p.minmax_sampler);
 
-  // GENERAL for life, cleared to "infinitely far" (0): until a frame has been reduced into
-  // it the pyramid hides nothing.
-  vk::submit_now(ctx, [&](VkCommandBuffer cmd) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-    b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = p.image.image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, p.levels, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    VkClearColorValue zero{};
-    vkCmdClearColorImage(cmd, p.image.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &b.subresourceRange);
-    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                           VK_ACCESS_2_TRANSFER_READ_BIT);
-  });
+  clear_to_far(ctx, p);
   return p;
 }
 
@@ -187,9 +177,12 @@ void record_depth_pyramid(VkCommandBuffer cmd, const DepthPyramid& p) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
   for (uint32_t i = 0; i < p.levels; ++i) {
     VkExtent2D src = i == 0 ? p.source_size : level_size(p, i - 1), dst = level_size(p, i);
-    LevelConstants c{{int32_t(src.width), int32_t(src.height)}, {int32_t(dst.width), int32_t(dst.height)}, i == 0 ? 1u : 0u};
+    gpu::DepthPyramidPush c{};
+    c.source_size = {int32_t(src.width), int32_t(src.height)};
+    c.destination_size = {int32_t(dst.width), int32_t(dst.height)};
+    c.first_level = i == 0 ? 1u : 0u;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.sets[i], 0, nullptr);
-    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
+    vkCmdPushConstants(cmd, p.layout, kPyramidPushRange.stageFlags, 0, sizeof(c), &c);
     vkCmdDispatch(cmd, (dst.width + PYRAMID_GROUP_SIZE - 1) / PYRAMID_GROUP_SIZE,
                   (dst.height + PYRAMID_GROUP_SIZE - 1) / PYRAMID_GROUP_SIZE, 1);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -212,28 +205,17 @@ std::vector<std::vector<float>> read_depth_pyramid(vk::Context& ctx, const Depth
   }
   vk::Buffer readback = vk::create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
   vk::submit_now(ctx, [&](VkCommandBuffer cmd) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    b.dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    b.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    b.oldLayout = VK_IMAGE_LAYOUT_GENERAL;
-    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = p.image.image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, p.levels, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    vk::image_barrier(cmd, p.image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT, p.levels);
     vkCmdCopyImageToBuffer(cmd, p.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer,
                            uint32_t(regions.size()), regions.data());
-    std::swap(b.oldLayout, b.newLayout);  // back to GENERAL for the next frame's passes
-    b.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    b.srcAccessMask = 0;
-    b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    b.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    // Back to GENERAL for the next frame's passes.
+    vk::image_barrier(cmd, p.image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_NONE,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, p.levels);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   });

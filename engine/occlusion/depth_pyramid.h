@@ -8,8 +8,17 @@
 #include <vector>
 
 #include "engine/vk/resources.h"
+#include "gpu_types.h"
 
 namespace forest {
+
+// depth_pyramid.comp's set (one per level) and push constants; tests/unit/test_gpu_interface.cpp
+// checks the compiled shader against them.
+inline constexpr VkDescriptorSetLayoutBinding kPyramidSetBindings[] = {
+    {PYRAMID_BINDING_SOURCE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+    {PYRAMID_BINDING_DESTINATION, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+};
+inline constexpr VkPushConstantRange kPyramidPushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::DepthPyramidPush)};
 
 struct DepthPyramid {
   vk::Image image;                   // R32_SFLOAT, `levels` mips, always in VK_IMAGE_LAYOUT_GENERAL

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
-
-#include "generators/core/input_error.h"
 
 namespace forest {
 
@@ -14,19 +13,6 @@ namespace {
 // around it, which hold leaves of the same tree. Moving samples this many metaball radii
 // toward the camera clears the bumps, while trees a few meters apart still hide each other.
 constexpr float kHullMarginRadii = 2.0f;
-
-glm::vec3 read_point(const nlohmann::json& v, const char* key, size_t i) {
-  auto fail = [&] { throw InputError("", 0, std::string("extras.forest.") + key + "[" + std::to_string(i) + "]",
-                                     "expected [x, y, z] of finite numbers"); };
-  if (!v.is_array() || v.size() != 3) fail();
-  glm::vec3 p;
-  for (int k = 0; k < 3; ++k) {
-    if (!v[size_t(k)].is_number()) fail();
-    p[k] = v[size_t(k)].get<float>();
-    if (!std::isfinite(p[k])) fail();
-  }
-  return p;
-}
 
 // Does the ray from p along n leave the mesh without hitting it again (Möller–Trumbore)?
 bool ray_escapes(const Mesh& mesh, glm::vec3 p, glm::vec3 n) {
@@ -51,20 +37,18 @@ bool ray_escapes(const Mesh& mesh, glm::vec3 p, glm::vec3 n) {
 
 OcclusionSamples occlusion_samples(const TreeModel& model) {
   OcclusionSamples out;
-  const nlohmann::json& meta = model.meta;
-  if (meta.is_object() && meta.contains("hull_samples")) {
-    const nlohmann::json& pts = meta["hull_samples"];
-    const nlohmann::json* nrm = meta.contains("hull_sample_normals") ? &meta["hull_sample_normals"] : nullptr;
-    if (!pts.is_array()) throw InputError("", 0, "extras.forest.hull_samples", "expected an array of points");
-    if (!nrm || !nrm->is_array() || nrm->size() != pts.size())
-      throw InputError("", 0, "extras.forest.hull_sample_normals", "expected one normal per hull sample");
-    for (size_t i = 0; i < pts.size(); ++i) {
-      glm::vec3 p = read_point(pts[i], "hull_samples", i), n = read_point((*nrm)[i], "hull_sample_normals", i);
+  if (const std::optional<HullSamples>& hull = model.bake.hull) {
+    // Checked when the asset was read (bake_from_json); here only what would read out of bounds.
+    if (hull->normals.size() != hull->points.size())
+      throw std::invalid_argument("occlusion_samples: " + std::to_string(hull->normals.size()) + " normals for " +
+                                  std::to_string(hull->points.size()) + " hull samples");
+    for (size_t i = 0; i < hull->points.size(); ++i) {
+      glm::vec3 n = hull->normals[i];
       float len = glm::length(n);
-      if (!(len > 1e-6f)) throw InputError("", 0, "extras.forest.hull_sample_normals[" + std::to_string(i) + "]", "zero normal");
-      out.samples.push_back({glm::vec4(p, 1.0f), glm::vec4(n / len, 0.0f)});
+      if (!(len > 1e-6f)) throw std::invalid_argument("occlusion_samples: zero normal of hull sample " + std::to_string(i));
+      out.samples.push_back({glm::vec4(hull->points[i], 1.0f), glm::vec4(n / len, 0.0f)});
     }
-    float r = meta.contains("hull_radius") && meta["hull_radius"].is_number() ? meta["hull_radius"].get<float>() : 0.0f;
+    float r = hull->radius;
     out.margin = kHullMarginRadii * (std::isfinite(r) && r > 0.0f ? r : 0.05f * model.bounding_sphere.w);
     // A crown whose leaves line a shell has a hollow hull: its inner surface, and deep pits,
     // are hidden by the tree's own foliage from every side, so samples there would read as

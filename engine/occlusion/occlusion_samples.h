@@ -1,5 +1,5 @@
 // The points whose visibility gives a tree's occlusion factor f (Neubert 2012 §7.4): the baked
-// hull samples (extras.forest.hull_samples / hull_sample_normals), or, for a model that was
+// hull samples (TreeModel::bake.hull), or, for a model that was
 // never baked, points spread over the ellipsoid spanning its leaves (the crown; the bounding
 // sphere for a leafless model). A crown ellipsoid rather than the bounding sphere [ours]: the
 // sphere reaches below the ground and past the crown, where terrain and neighbours would
@@ -23,8 +23,8 @@ struct OcclusionSamples {
   bool from_hull = false;
 };
 
-// Throws InputError naming the key when the model carries hull samples that are malformed
-// (not [x, y, z] arrays of finite numbers, normals missing or of another count).
+// The hull samples were validated when the asset was read; std::invalid_argument when the
+// model's are inconsistent (normals of another count, or zero).
 OcclusionSamples occlusion_samples(const TreeModel& model);
 
 }  // namespace forest

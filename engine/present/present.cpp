@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <string>
 
 #include "engine/vk/pipelines.h"
+#include "gpu_types.h"
 
 namespace forest {
 
@@ -88,14 +90,16 @@ void record_copy_pass(VkCommandBuffer cmd, const Presenter& p, const vk::Swapcha
   ri.colorAttachmentCount = 1;
   ri.pColorAttachments = &color;
   vkCmdBeginRendering(cmd, &ri);
-  float rect[4] = {float(begin.x), float(begin.y), float(end.x - begin.x), float(end.y - begin.y)};
-  VkViewport viewport{rect[0], rect[1], rect[2], rect[3], 0.0f, 1.0f};
+  gpu::PresentPush rect{};
+  rect.offset = {float(begin.x), float(begin.y)};
+  rect.size = {float(end.x - begin.x), float(end.y - begin.y)};
+  VkViewport viewport{rect.offset.x, rect.offset.y, rect.size.x, rect.size.y, 0.0f, 1.0f};
   VkRect2D scissor{{begin.x, begin.y}, {uint32_t(end.x - begin.x), uint32_t(end.y - begin.y)}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &p.set, 0, nullptr);
-  vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(rect), rect);
+  vkCmdPushConstants(cmd, p.layout, kPresentPushRange.stageFlags, 0, sizeof(rect), &rect);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRendering(cmd);
   // The renderer's next frame writes the source after a barrier on the transfer stage:
@@ -141,14 +145,8 @@ void create_presenter(vk::Context& ctx, Presenter& p, const vk::Image& source, V
   vkGetPhysicalDeviceFormatProperties(ctx.physical, source.format, &props);
   p.linear_blit = props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
   for (Presenter::Frame& f : p.frames) {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = ctx.command_pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, &f.cmd));
-    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first wait on each slot returns at once
-    VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &f.done));
+    f.cmd = vk::allocate_command_buffer(ctx);
+    f.done = vk::create_fence(ctx, true);  // the first wait on each slot returns at once
     VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VK_CHECK(vkCreateSemaphore(ctx.device, &sci, nullptr, &f.acquired));
     f.overlay = vk::create_buffer(ctx, std::max<VkDeviceSize>(max_overlay_bytes, 4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -161,11 +159,9 @@ void create_presenter(vk::Context& ctx, Presenter& p, const vk::Image& source, V
   sci.magFilter = sci.minFilter = p.linear_blit ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VK_CHECK(vkCreateSampler(ctx.device, &sci, nullptr, &p.sampler));
-  VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
-                                       nullptr};
   VkDescriptorSetLayoutCreateInfo slci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  slci.bindingCount = 1;
-  slci.pBindings = &binding;
+  slci.bindingCount = uint32_t(std::size(kPresentSetBindings));
+  slci.pBindings = kPresentSetBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &slci, nullptr, &p.set_layout));
   VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -181,17 +177,12 @@ void create_presenter(vk::Context& ctx, Presenter& p, const vk::Image& source, V
   VkDescriptorImageInfo image{p.sampler, source.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = p.set;
+  write.dstBinding = PRESENT_BINDING_RENDERED;
   write.descriptorCount = 1;
   write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   write.pImageInfo = &image;
   vkUpdateDescriptorSets(ctx.device, 1, &write, 0, nullptr);
-  VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4 * sizeof(float)};
-  VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  plci.setLayoutCount = 1;
-  plci.pSetLayouts = &p.set_layout;
-  plci.pushConstantRangeCount = 1;
-  plci.pPushConstantRanges = &push;
-  VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &p.layout));
+  p.layout = vk::create_pipeline_layout(ctx, p.set_layout, kPresentPushRange);
 }
 
 void destroy_presenter(vk::Context& ctx, Presenter& p) {
@@ -212,6 +203,92 @@ void destroy_presenter(vk::Context& ctx, Presenter& p) {
   p.pipeline = VK_NULL_HANDLE, p.layout = VK_NULL_HANDLE, p.pool = VK_NULL_HANDLE;
   p.set_layout = VK_NULL_HANDLE, p.sampler = VK_NULL_HANDLE;
 }
+
+namespace {
+
+// The copy pass's pipeline, for the swapchain's format (first use, or the window changed it).
+void ensure_copy_pipeline(vk::Context& ctx, Presenter& p, VkFormat format) {
+  if (p.pipeline_format == format) return;
+  vkDeviceWaitIdle(ctx.device);
+  vkDestroyPipeline(ctx.device, p.pipeline, nullptr);
+  vk::GraphicsPipelineDesc d;
+  d.vertex = "present_vert";
+  d.fragment = "present_frag";
+  d.vertex_input = false;
+  d.cull = VK_CULL_MODE_NONE;
+  d.depth_test = d.depth_write = false;
+  d.color_format = format;
+  p.pipeline = vk::create_graphics_pipeline(ctx, p.layout, d);
+  p.pipeline_format = format;
+}
+
+// O(1) per frame: a small panel, copied over the top-left corner of `target` (TRANSFER_DST).
+void record_overlay(VkCommandBuffer cmd, const Presenter::Frame& f, const OverlayImage& overlay,
+                    const vk::Swapchain& sc, VkImage target) {
+  uint32_t w = std::min(overlay.width, sc.extent.width), h = std::min(overlay.height, sc.extent.height);
+  std::memcpy(f.overlay.mapped, overlay.bytes.data(), std::min<size_t>(overlay.bytes.size(), f.overlay.size));
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkBufferImageCopy region{};
+  region.bufferRowLength = overlay.width;
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {w, h, 1};
+  vkCmdCopyBufferToImage(cmd, f.overlay.buffer, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+}
+
+// Copies `target` (TRANSFER_DST) into the readback buffer; returns the layout it leaves.
+VkImageLayout record_screenshot(vk::Context& ctx, VkCommandBuffer cmd, Presenter& p, const vk::Swapchain& sc,
+                                VkImage target) {
+  const VkDeviceSize shot_bytes = VkDeviceSize(sc.extent.width) * sc.extent.height * 4;
+  if (p.readback.size < shot_bytes) {
+    vk::destroy_buffer(ctx, p.readback);  // unused: every earlier screenshot waited for its frame
+    p.readback = vk::create_buffer(ctx, shot_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
+  }
+  vk::image_barrier(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {sc.extent.width, sc.extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, p.readback.buffer, 1, &region);
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_HOST_READ_BIT);
+  return VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+}
+
+// After the frame's fence: the readback buffer as RGBA.
+void read_screenshot(const Presenter& p, const vk::Swapchain& sc, FrameImage* screenshot) {
+  const VkDeviceSize shot_bytes = VkDeviceSize(sc.extent.width) * sc.extent.height * 4;
+  bool bgra = false;
+  overlay_byte_order(sc.format, &bgra);
+  screenshot->width = sc.extent.width;
+  screenshot->height = sc.extent.height;
+  screenshot->rgba.resize(shot_bytes);
+  std::memcpy(screenshot->rgba.data(), p.readback.mapped, shot_bytes);
+  if (bgra)
+    for (size_t i = 0; i < shot_bytes; i += 4) std::swap(screenshot->rgba[i], screenshot->rgba[i + 2]);
+}
+
+void submit(vk::Context& ctx, const Presenter::Frame& f, VkSemaphore ready_to_present) {
+  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait.semaphore = f.acquired;
+  wait.stageMask = kFirstUse;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = ready_to_present;
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = f.cmd;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.waitSemaphoreInfoCount = 1;
+  si.pWaitSemaphoreInfos = &wait;
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  si.signalSemaphoreInfoCount = 1;
+  si.pSignalSemaphoreInfos = &signal;
+  VK_CHECK(vkQueueSubmit2(ctx.queue, 1, &si, f.done));
+}
+
+}  // namespace
 
 PresentResult present(vk::Context& ctx, Presenter& p, const vk::Swapchain& sc, const vk::Image& source,
                       VkImageLayout source_layout, const OverlayImage* overlay, FrameImage* screenshot) {
@@ -235,89 +312,25 @@ PresentResult present(vk::Context& ctx, Presenter& p, const vk::Swapchain& sc, c
   VkOffset3D end;
   VkOffset3D begin = fit_rect(source.extent, sc.extent, &end);
   if (p.copy_pass) {
-    if (p.pipeline_format != sc.format) {  // first use, or the window changed format
-      vkDeviceWaitIdle(ctx.device);
-      vkDestroyPipeline(ctx.device, p.pipeline, nullptr);
-      vk::GraphicsPipelineDesc d;
-      d.vertex = "present_vert";
-      d.fragment = "present_frag";
-      d.vertex_input = false;
-      d.cull = VK_CULL_MODE_NONE;
-      d.depth_test = d.depth_write = false;
-      d.color_format = sc.format;
-      p.pipeline = vk::create_graphics_pipeline(ctx, p.layout, d);
-      p.pipeline_format = sc.format;
-    }
+    ensure_copy_pipeline(ctx, p, sc.format);
     record_copy_pass(cmd, p, sc, index, source, source_layout, begin, end);
   } else {
     record_blit(cmd, sc, target, source, source_layout, begin, end, p.linear_blit);
   }
-
-  if (overlay && overlay->width > 0 && overlay->height > 0) {
-    // O(1) per frame: a small panel, copied over the top-left corner of the frame.
-    uint32_t w = std::min(overlay->width, sc.extent.width), h = std::min(overlay->height, sc.extent.height);
-    std::memcpy(f.overlay.mapped, overlay->bytes.data(), std::min<size_t>(overlay->bytes.size(), f.overlay.size));
-    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy region{};
-    region.bufferRowLength = overlay->width;
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {w, h, 1};
-    vkCmdCopyBufferToImage(cmd, f.overlay.buffer, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-  }
-
+  if (overlay && overlay->width > 0 && overlay->height > 0) record_overlay(cmd, f, *overlay, sc, target);
   VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  const VkDeviceSize shot_bytes = VkDeviceSize(sc.extent.width) * sc.extent.height * 4;
-  if (screenshot) {
-    if (p.readback.size < shot_bytes) {
-      vk::destroy_buffer(ctx, p.readback);  // unused: every earlier screenshot waited for its frame
-      p.readback = vk::create_buffer(ctx, shot_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
-    }
-    vk::image_barrier(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-    layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {sc.extent.width, sc.extent.height, 1};
-    vkCmdCopyImageToBuffer(cmd, target, layout, p.readback.buffer, 1, &region);
-    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                       VK_ACCESS_2_HOST_READ_BIT);
-  }
+  if (screenshot) layout = record_screenshot(ctx, cmd, p, sc, target);
   // Present reads the image after the semaphore; no access to make available here.
   vk::image_barrier(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_NONE, 0);
   VK_CHECK(vkEndCommandBuffer(cmd));
-
-  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-  wait.semaphore = f.acquired;
-  wait.stageMask = kFirstUse;
-  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-  signal.semaphore = sc.ready_to_present[index];
-  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-  cbi.commandBuffer = cmd;
-  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-  si.waitSemaphoreInfoCount = 1;
-  si.pWaitSemaphoreInfos = &wait;
-  si.commandBufferInfoCount = 1;
-  si.pCommandBufferInfos = &cbi;
-  si.signalSemaphoreInfoCount = 1;
-  si.pSignalSemaphoreInfos = &signal;
-  VK_CHECK(vkQueueSubmit2(ctx.queue, 1, &si, f.done));
+  submit(ctx, f, sc.ready_to_present[index]);
   ++p.frame;
 
   if (screenshot) {
     VK_CHECK(vkWaitForFences(ctx.device, 1, &f.done, VK_TRUE, UINT64_MAX));
-    bool bgra = false;
-    overlay_byte_order(sc.format, &bgra);
-    screenshot->width = sc.extent.width;
-    screenshot->height = sc.extent.height;
-    screenshot->rgba.resize(shot_bytes);
-    std::memcpy(screenshot->rgba.data(), p.readback.mapped, shot_bytes);
-    if (bgra)
-      for (size_t i = 0; i < shot_bytes; i += 4) std::swap(screenshot->rgba[i], screenshot->rgba[i + 2]);
+    read_screenshot(p, sc, screenshot);
   }
 
   VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};

@@ -11,8 +11,16 @@
 #include "engine/render/renderer.h"
 #include "engine/vk/resources.h"
 #include "engine/vk/swapchain.h"
+#include "gpu_types.h"
 
 namespace forest {
+
+// The copy pass's set (present.frag) and push constants; tests/unit/test_gpu_interface.cpp
+// checks the compiled shaders against them.
+inline constexpr VkDescriptorSetLayoutBinding kPresentSetBindings[] = {
+    {PRESENT_BINDING_RENDERED, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+};
+inline constexpr VkPushConstantRange kPresentPushRange{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(gpu::PresentPush)};
 
 struct Presenter {
   static constexpr uint32_t kFramesInFlight = 2;

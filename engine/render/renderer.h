@@ -1,13 +1,24 @@
 // Headless forest renderer: uploads a Scene once, then renders frames entirely from GPU
-// buffers: cull.comp writes compacted indirect draws, drawn with DrawIndexedIndirectCount.
-// Per-frame CPU work is O(1) in the number of tree instances.
+// buffers. A frame is a list of passes, each a small unit owning its pipeline and bindings:
+// cull (cull_pass.h) → tail cull with occlusion (tail_cull_pass.h) → draw (draw_pass.h) →
+// depth pyramid with occlusion (engine/occlusion/depth_pyramid.h) → readback; coverage
+// comparisons add the count pass (pr_count_pass.h). The descriptor set layout is the union
+// of what the passes declare (descriptor_table.h). Per-frame CPU work is O(1) in the number
+// of tree instances. Two frames in flight (render_async, for `forest walk`).
 #pragma once
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "engine/occlusion/depth_pyramid.h"
+#include "engine/render/cull_pass.h"
+#include "engine/render/descriptor_table.h"
+#include "engine/render/draw_pass.h"
 #include "engine/render/gpu_stats.h"
+#include "engine/render/pr_count_pass.h"
+#include "engine/render/render_targets.h"
+#include "engine/render/scene_buffers.h"
+#include "engine/render/tail_cull_pass.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
 #include "engine/vk/resources.h"
@@ -22,9 +33,9 @@ struct FrameImage {
 
 // Per-frame choices that override the scene's [render] settings.
 struct FrameSettings {
-  uint32_t prune_mode = PRUNE_FULL;
-  float fixed_lambda = 1.0f;  // PRUNE_FIXED
-  float fixed_scale = 1.0f;   // PRUNE_FIXED: leaf area scale s
+  PruneMode prune_mode = PruneMode::full;
+  float fixed_lambda = 1.0f;  // PruneMode::fixed
+  float fixed_scale = 1.0f;   // PruneMode::fixed: leaf area scale s
   bool mask = false;          // coverage only: trees white on black, no sky or terrain
   bool lambda_view = false;
   // Triangle edges instead of filled triangles (terrain, bark, leaf cards); ignored when the
@@ -83,8 +94,14 @@ struct CoverageJob {
   float lambda = 1.0f, scale = 1.0f;
 };
 
+// Set 0 of every renderer pipeline: the union of the bindings its passes declare.
+inline constexpr std::span<const Binding> kRendererBindingLists[] = {kSceneBindings, kCullBindings, kTailCullBindings,
+                                                                     kDrawBindings, kPrCountBindings};
+
 class Renderer {
  public:
+  static constexpr uint32_t kFramesInFlight = 2;
+
   // `samples`: MSAA samples per pixel, lowered to what the device supports.
   Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, uint32_t samples = 1);
   ~Renderer();
@@ -94,6 +111,12 @@ class Renderer {
   // Renders one frame and waits for it; fills `image` when given.
   FrameStats render(const CameraDesc& camera, FrameImage* image);
   FrameStats render(const CameraDesc& camera, FrameImage* image, const FrameSettings& settings);
+  // Records and submits one frame without waiting for it, so the CPU prepares the next frame
+  // while the GPU draws this one (`forest walk`). Returns the statistics of the frame before
+  // the one just submitted (its queries are read a frame late, when its slot is reused);
+  // nullopt when there is none yet. The frame's colour image may be read by later work on
+  // the same queue (present) as after render().
+  std::optional<FrameStats> render_async(const CameraDesc& camera, const FrameSettings& settings);
 
   // Coverage comparisons on the GPU: render the reference coverage once per view, then
   // compare any number of test settings against it; only three counts come back.
@@ -112,72 +135,75 @@ class Renderer {
   std::vector<gpu::InstanceState> instance_states();
   const DepthPyramid& depth_pyramid() const { return pyramid_; }
 
+  uint32_t samples() const { return uint32_t(targets_.samples); }
+  bool has_wireframe() const { return draw_.wire.terrain != VK_NULL_HANDLE; }
+  // The resolved colour image of the last frame (sRGB, width × height) and the layout the
+  // last render() left it in, for a present step that copies it to a window (forest walk).
+  // The next render() discards its contents; reads must be ordered before it on the queue.
+  const vk::Image& color_image() const { return targets_.color; }
+  VkImageLayout color_layout() const { return color_layout_; }
+
  private:
-  void create_pipelines();
   enum class Output { none, image, reference, compare };
-  FrameStats submit(const CameraDesc& camera, const FrameSettings& settings, Output output);
-  void record(VkCommandBuffer cmd, Output output, bool mask, bool build_pyramid);
-  // Occlusion feedback (Neubert 2012 §7.4): per-model samples, per-instance state, the pyramid.
-  void create_occlusion_resources(const std::vector<gpu::HullSample>& samples);
+  // What one frame in flight owns: its command buffer and fence, its frame constants (and
+  // the descriptor set that binds them), its queries and its statistics readback.
+  struct FrameSlot {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    bool pending = false;  // submitted, results not read yet
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::Buffer frame;            // FrameData (host-written, TRANSFER_DST for coverage batches)
+    vk::Buffer counts_readback;  // DrawCounts
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+    GpuStatsQueries pipeline_stats;
+    FrameStats stats;  // what is known at submit (instances, camera cut, CPU time)
+  };
+
+  void create_slots();
+  void write_descriptors();
+  FrameSlot& next_slot();
+  // Drains the frames in flight, then renders one frame and waits for it.
+  FrameSlot& render_and_wait(const CameraDesc& camera, const FrameSettings& settings, Output output);
+  void drain();  // waits for every frame in flight (results of render_async frames dropped)
+  FrameStats read_stats(FrameSlot& slot);
+  void submit(FrameSlot& slot);
+  void wait(FrameSlot& slot);
+  // Frame constants, occlusion state and recording of one frame into `slot`.
+  void prepare_frame(FrameSlot& slot, const CameraDesc& camera, const FrameSettings& settings, Output output);
+  // The one recording path of scene pictures, shared by frames and coverage batches: cull,
+  // tail cull (with occlusion), draw. `timed`: timestamps and pipeline statistics of `slot`.
+  void record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const DrawList& list, bool occlusion, bool timed);
+  void record_frame(FrameSlot& slot, Output output, const DrawList& list, bool occlusion);
+  void record_output(VkCommandBuffer cmd, Output output, VkDescriptorSet set);
   void record_pyramid(VkCommandBuffer cmd);
   bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;
   gpu::FrameData frame_data(const CameraDesc& camera, const FrameSettings& settings) const;
-  // Returns the CPU milliseconds spent up to the queue submission (not the wait).
-  double submit_and_wait();
-  // Coverage batches: one mask render (branches and/or leaves) recorded into `cmd`.
-  void record_coverage_pass(VkCommandBuffer cmd, const gpu::FrameData& frame, bool branches, bool leaves);
-  void record_pr_count(VkCommandBuffer cmd, const gpu::PrCountPush& push);
+  // Coverage batches (coverage_batch.cpp): one mask render recorded into `cmd`.
+  void record_coverage_render(VkCommandBuffer cmd, const FrameSlot& slot, const gpu::FrameData& frame, bool branches,
+                              bool leaves);
   void reserve_coverage(uint32_t reference_frames, uint32_t results);
-  std::vector<CameraDesc> coverage_views_;
-  uint32_t reference_capacity_ = 1, result_capacity_ = 1;  // frames / PrCounts allocated
 
   vk::Context& ctx_;
   const Scene& scene_;
   uint32_t width_, height_;
-  uint32_t instance_count_ = 0;
-  uint32_t terrain_index_count_ = 0;
-
-  vk::Buffer vertices_, indices_, instances_, models_, leaves_, prune_tables_;
-  vk::Buffer frame_, commands_, counts_, counts_readback_, image_readback_;
-  vk::Buffer coverage_reference_, coverage_test_, pr_counts_, pr_readback_;
-  vk::Image leaf_textures_;
-  VkSampler sampler_ = VK_NULL_HANDLE;
-  vk::Image color_, color_msaa_, depth_;  // color_msaa_ only when samples_ > 1
-  vk::Image depth_resolve_;                // sample 0 of depth_ when samples_ > 1: the pyramid's source
-  vk::Buffer hull_samples_, instance_states_;
-  vk::Buffer tail_jobs_, tail_leaves_;  // per-leaf occlusion of partly hidden trees (tail_cull.comp)
-  uint32_t tail_capacity_ = 1;
+  RenderTargets targets_;
+  SceneBuffers buffers_;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  DescriptorTable descriptors_;
+  CullPass cull_;
+  TailCullPass tail_cull_;
+  DrawPass draw_;
+  PrCountPass pr_count_;
   DepthPyramid pyramid_;
-  VkSampler pyramid_sampler_ = VK_NULL_HANDLE;
+  FrameSlot slots_[kFramesInFlight];
+  uint32_t frame_count_ = 0;  // frames submitted; slots_[frame_count_ % kFramesInFlight] is next
+  vk::Buffer image_readback_;
+  std::vector<CameraDesc> coverage_views_;
   // The frame the pyramid holds: its camera, and whether it is usable at all.
   bool pyramid_valid_ = false;
   glm::mat4 pyramid_view_proj_{1.0f};
   CameraDesc pyramid_camera_;
-  VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
-
- public:
-  uint32_t samples() const { return uint32_t(samples_); }
-  bool has_wireframe() const { return terrain_wire_ != VK_NULL_HANDLE; }
-  // The resolved colour image of the last frame (sRGB, width × height) and the layout the
-  // last render() left it in, for a present step that copies it to a window (forest walk).
-  // The next render() discards its contents; reads must be ordered before it on the queue.
-  const vk::Image& color_image() const { return color_; }
-  VkImageLayout color_layout() const { return color_layout_; }
-
- private:
-  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline cull_ = VK_NULL_HANDLE, tail_cull_ = VK_NULL_HANDLE, sky_ = VK_NULL_HANDLE, terrain_ = VK_NULL_HANDLE;
-  VkPipeline branches_ = VK_NULL_HANDLE, leaves_pipeline_ = VK_NULL_HANDLE, pr_count_ = VK_NULL_HANDLE;
-  VkPipeline terrain_wire_ = VK_NULL_HANDLE, branches_wire_ = VK_NULL_HANDLE, leaves_wire_ = VK_NULL_HANDLE;
-  bool wireframe_ = false;  // this frame draws with the *_wire_ pipelines
   VkImageLayout color_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkQueryPool timestamps_ = VK_NULL_HANDLE;
-  GpuStatsQueries pipeline_stats_;
-  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-  VkFence fence_ = VK_NULL_HANDLE;
 };
 
 }  // namespace forest

@@ -37,8 +37,7 @@ void read_render(const TomlTable& t, SceneDesc& s) {
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
   if (s.samples & (s.samples - 1)) t.fail("samples", "must be 1, 2, 4 or 8, got " + std::to_string(s.samples));
   s.lod_error_pixels = float(t.number("lod_error_pixels", s.lod_error_pixels, 0.0, 1000.0));
-  std::string mode = t.choice("mode", "full", {"full", "cook", "opt"});
-  s.prune_mode = mode == "cook" ? PRUNE_COOK : mode == "opt" ? PRUNE_OPT : PRUNE_FULL;
+  s.prune_mode = *parse_prune_mode(t.choice("mode", "full", prune_mode_names()));
   s.prune_distance = float(t.number("prune_distance", s.prune_distance, 1e-2, kBig));
   s.transition = float(t.number("transition", s.transition, 0.0, 1.0));
   std::string view = t.choice("view", "shaded", {"shaded", "lambda", "mask"});

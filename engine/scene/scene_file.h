@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/scene/prune_mode.h"
+
 namespace forest {
 
 struct CameraDesc {
@@ -102,7 +104,7 @@ struct SceneDesc {
   uint32_t width = 1280, height = 720;
   uint32_t samples = 4;  // MSAA samples per pixel: 1, 2, 4 or 8
   float lod_error_pixels = 1.0f;  // branch LOD: allowed projected error; 0 = always LOD0
-  uint32_t prune_mode = 0;        // PRUNE_FULL, PRUNE_COOK or PRUNE_OPT ([render] mode)
+  PruneMode prune_mode = PruneMode::full;  // [render] mode
   float prune_distance = 400.0f;  // meters at which the normalized distance d reaches 1
   float transition = 0.1f;        // Cook's transition band t: fraction of the prefix that shrinks
   bool lambda_view = false;       // [render] view = "lambda": color trees by detail level

@@ -200,8 +200,37 @@ void pin_vulkan_libraries() {
 #endif
 }
 
-void create_context(Context& ctx, const ContextOptions& options) {
-  ctx.validation = options.validation;
+namespace {
+
+void require_validation_layer() {
+  uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> props(n);
+  vkEnumerateInstanceLayerProperties(&n, props.data());
+  bool found = std::any_of(props.begin(), props.end(), [](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
+  });
+  if (!found)
+    throw VkFailure("validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                    "(apt-get install vulkan-validationlayers)");
+}
+
+// Warnings and errors of every message type, counted into `ctx` (on_validation_message).
+VkDebugUtilsMessengerCreateInfoEXT messenger_info_for(Context& ctx) {
+  VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messenger_info.pfnUserCallback = on_validation_message;
+  messenger_info.pUserData = &ctx;
+  return messenger_info;
+}
+
+// The instance, with the validation layer and its messenger when ctx.validation (and the
+// layer's synchronization validation when asked for).
+void create_instance(Context& ctx, const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "forest";
   app.pEngineName = "forest";
@@ -209,16 +238,7 @@ void create_context(Context& ctx, const ContextOptions& options) {
 
   std::vector<const char*> layers, extensions;
   if (ctx.validation) {
-    uint32_t n = 0;
-    vkEnumerateInstanceLayerProperties(&n, nullptr);
-    std::vector<VkLayerProperties> props(n);
-    vkEnumerateInstanceLayerProperties(&n, props.data());
-    bool found = std::any_of(props.begin(), props.end(), [](const VkLayerProperties& l) {
-      return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
-    });
-    if (!found)
-      throw VkFailure("validation requested but VK_LAYER_KHRONOS_validation is not installed "
-                      "(apt-get install vulkan-validationlayers)");
+    require_validation_layer();
     layers.push_back("VK_LAYER_KHRONOS_validation");
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
@@ -230,14 +250,7 @@ void create_context(Context& ctx, const ContextOptions& options) {
   validation_features.pEnabledValidationFeatures = &sync_validation;
   const bool sync = ctx.validation && options.synchronization_validation;
   if (sync) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
-  VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  messenger_info.pfnUserCallback = on_validation_message;
-  messenger_info.pUserData = &ctx;
+  VkDebugUtilsMessengerCreateInfoEXT messenger_info = messenger_info_for(ctx);
 
   VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ici.pNext = ctx.validation ? &messenger_info : nullptr;  // also covers create/destroy
@@ -259,9 +272,12 @@ void create_context(Context& ctx, const ContextOptions& options) {
         vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
     VK_CHECK(create(ctx.instance, &messenger_info, nullptr, &ctx.messenger));
   }
+}
 
-  if (options.create_surface) ctx.surface = options.create_surface(ctx.instance);
-  ctx.device_index = choose_device(ctx.instance, options.device);
+// The device of --device (or the default choice), refused when it lacks a feature the
+// engine relies on.
+void choose_physical_device(Context& ctx, const std::string& device) {
+  ctx.device_index = choose_device(ctx.instance, device);
   ctx.physical = physical_devices(ctx.instance)[ctx.device_index];
   vkGetPhysicalDeviceProperties(ctx.physical, &ctx.properties);
   vkGetPhysicalDeviceMemoryProperties(ctx.physical, &ctx.memory);
@@ -272,23 +288,29 @@ void create_context(Context& ctx, const ContextOptions& options) {
   if (!missing.empty())
     throw VkFailure(std::string("device '") + ctx.properties.deviceName +
                     "' lacks features the engine relies on: " + missing);
+}
 
+// The first queue family with graphics, compute and timestamps (that can also present to
+// the window's surface, when there is one).
+uint32_t choose_queue_family(const Context& ctx) {
   uint32_t nq = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical, &nq, nullptr);
   std::vector<VkQueueFamilyProperties> families(nq);
   vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical, &nq, families.data());
-  bool found = false;
-  for (uint32_t i = 0; i < nq && !found; ++i) {
+  for (uint32_t i = 0; i < nq; ++i) {
     VkBool32 present = VK_TRUE;  // headless: nothing to present to
     if (ctx.surface) VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical, i, ctx.surface, &present));
     if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
         families[i].timestampValidBits > 0 && present)
-      ctx.queue_family = i, found = true;
+      return i;
   }
-  if (!found)
-    throw VkFailure(ctx.surface ? "no graphics+compute queue with timestamps that can present to the window"
-                                : "no graphics+compute queue with timestamps on the chosen device");
+  throw VkFailure(ctx.surface ? "no graphics+compute queue with timestamps that can present to the window"
+                              : "no graphics+compute queue with timestamps on the chosen device");
+}
 
+// The logical device with one queue of ctx.queue_family, the features the engine relies
+// on, the optional ones the device has, and VK_KHR_swapchain when windowed.
+void create_device(Context& ctx) {
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   qci.queueFamilyIndex = ctx.queue_family;
@@ -322,6 +344,17 @@ void create_context(Context& ctx, const ContextOptions& options) {
   dci.enabledExtensionCount = ctx.surface ? 1 : 0;
   dci.ppEnabledExtensionNames = &swapchain_extension;
   VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
+}
+
+}  // namespace
+
+void create_context(Context& ctx, const ContextOptions& options) {
+  ctx.validation = options.validation;
+  create_instance(ctx, options);
+  if (options.create_surface) ctx.surface = options.create_surface(ctx.instance);
+  choose_physical_device(ctx, options.device);
+  ctx.queue_family = choose_queue_family(ctx);
+  create_device(ctx);
   pin_vulkan_libraries();
   vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
 
@@ -350,30 +383,50 @@ void destroy_context(Context& ctx) {
   ctx.messenger = VK_NULL_HANDLE;
 }
 
-VkCommandBuffer begin_one_shot(Context& ctx) {
+VkCommandBuffer allocate_command_buffer(Context& ctx) {
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = ctx.command_pool;
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   VkCommandBuffer cmd;
   VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, &cmd));
-  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
   return cmd;
 }
 
-void end_one_shot(Context& ctx, VkCommandBuffer cmd) {
-  VK_CHECK(vkEndCommandBuffer(cmd));
+VkFence create_fence(Context& ctx, bool signaled) {
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  if (signaled) fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+  VkFence fence;
+  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &fence));
+  return fence;
+}
+
+void begin_commands(VkCommandBuffer cmd) {
+  VK_CHECK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+}
+
+VkCommandBuffer begin_one_shot(Context& ctx) {
+  VkCommandBuffer cmd = allocate_command_buffer(ctx);
+  begin_commands(cmd);
+  return cmd;
+}
+
+void submit_commands(Context& ctx, VkCommandBuffer cmd, VkFence fence) {
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   si.commandBufferInfoCount = 1;
   si.pCommandBufferInfos = &cbi;
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &fence));
   VK_CHECK(vkQueueSubmit2(ctx.queue, 1, &si, fence));
+}
+
+void end_one_shot(Context& ctx, VkCommandBuffer cmd) {
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  VkFence fence = create_fence(ctx, false);
+  submit_commands(ctx, cmd, fence);
   VK_CHECK(vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX));
   vkDestroyFence(ctx.device, fence, nullptr);
   vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);

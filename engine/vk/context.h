@@ -79,6 +79,15 @@ bool validation_from_env();
 // The features the engine relies on, by name, and whether the chosen device has them.
 std::vector<std::pair<std::string, bool>> required_features(VkPhysicalDevice physical);
 
+// A primary command buffer from the context's pool, and a fence (`signaled`: the first wait
+// returns at once).
+VkCommandBuffer allocate_command_buffer(Context& ctx);
+VkFence create_fence(Context& ctx, bool signaled);
+// Resets `cmd` and begins it for one submission.
+void begin_commands(VkCommandBuffer cmd);
+// Submits one command buffer (no semaphores) to the context's queue; `fence` may be null.
+void submit_commands(Context& ctx, VkCommandBuffer cmd, VkFence fence);
+
 // Records and submits a one-off command buffer, waits for it.
 template <typename F>
 void submit_now(Context& ctx, F&& record);

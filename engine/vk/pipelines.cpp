@@ -1,10 +1,25 @@
 #include "engine/vk/pipelines.h"
 
+#include <cstddef>
+#include <iterator>
 #include <string>
 
 #include "generators/model/tree_model.h"
+#include "gpu_types.h"
 
 namespace forest::vk {
+
+namespace {
+
+const VkVertexInputAttributeDescription kVertexAttributes[] = {
+    {ATTR_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, position))},
+    {ATTR_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, normal))},
+    {ATTR_UV, 0, VK_FORMAT_R32G32_SFLOAT, uint32_t(offsetof(Vertex, uv))},
+};
+
+}  // namespace
+
+std::span<const VkVertexInputAttributeDescription> vertex_attributes() { return kVertexAttributes; }
 
 VkShaderModule create_shader(Context& ctx, std::string_view name) {
   std::span<const uint32_t> code = shaders::find(name);
@@ -17,15 +32,28 @@ VkShaderModule create_shader(Context& ctx, std::string_view name) {
   return module;
 }
 
+VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, const VkPushConstantRange& push) {
+  VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  plci.setLayoutCount = 1;
+  plci.pSetLayouts = &set;
+  plci.pushConstantRangeCount = 1;
+  plci.pPushConstantRanges = &push;
+  VkPipelineLayout layout;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &layout));
+  return layout;
+}
+
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc) {
   VkShaderModule vs = create_shader(ctx, desc.vertex);
   VkShaderModule fs = create_shader(ctx, desc.fragment);
   std::vector<VkSpecializationMapEntry> entries;
-  for (uint32_t i = 0; i < desc.fragment_constants.size(); ++i)
-    entries.push_back({i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)});
-  VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
-                                      desc.fragment_constants.size() * sizeof(uint32_t),
-                                      desc.fragment_constants.data()};
+  std::vector<uint32_t> values;
+  for (const SpecConstant& c : desc.fragment_specialization) {
+    entries.push_back({c.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+    values.push_back(c.value);
+  }
+  VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t),
+                                      values.data()};
   VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main"},
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
@@ -33,17 +61,12 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   };
 
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription attributes[3] = {
-      {0, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, position))},
-      {1, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, normal))},
-      {2, 0, VK_FORMAT_R32G32_SFLOAT, uint32_t(offsetof(Vertex, uv))},
-  };
   VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   if (desc.vertex_input) {
     vertex_input.vertexBindingDescriptionCount = 1;
     vertex_input.pVertexBindingDescriptions = &binding;
-    vertex_input.vertexAttributeDescriptionCount = 3;
-    vertex_input.pVertexAttributeDescriptions = attributes;
+    vertex_input.vertexAttributeDescriptionCount = uint32_t(std::size(kVertexAttributes));
+    vertex_input.pVertexAttributeDescriptions = kVertexAttributes;
   }
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;

@@ -15,6 +15,15 @@ namespace forest::vk {
 
 VkShaderModule create_shader(Context& ctx, std::string_view name);  // e.g. "cull_comp"
 
+// forest::Vertex at binding 0 as the vertex shaders read it: ATTR_* locations (gpu_types.h).
+std::span<const VkVertexInputAttributeDescription> vertex_attributes();
+
+// One specialization constant: `id` is a SPEC_* of shaders/gpu_types.h, every value 32 bits.
+struct SpecConstant {
+  uint32_t id;
+  uint32_t value;
+};
+
 struct GraphicsPipelineDesc {
   std::string_view vertex;    // shader registry names
   std::string_view fragment;
@@ -30,9 +39,12 @@ struct GraphicsPipelineDesc {
   // drives alpha-to-coverage, which the write mask does not affect).
   bool write_alpha = true;
   VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;  // LINE needs Context::fill_mode_non_solid
-  // Fragment-stage specialization constants, constant_id = index (shader variants).
-  std::vector<uint32_t> fragment_constants;
+  // Fragment-stage specialization constants (shader variants), e.g. {{SPEC_LEAF, 1u}}.
+  std::vector<SpecConstant> fragment_specialization;
 };
+
+// A pipeline layout of one descriptor set and one push-constant range.
+VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, const VkPushConstantRange& push);
 
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc);
 VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader);

@@ -48,11 +48,12 @@ void destroy_image(Context& ctx, Image& image);
 Image create_texture_array(Context& ctx, uint32_t size, uint32_t layers, uint32_t mips, VkFormat format,
                            std::span<const uint8_t> texels);
 
-// One synchronization2 image barrier (whole image, one mip, one layer).
+// One synchronization2 image barrier (mips [0, levels), layers [0, layers)).
 void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                    VkImageLayout from, VkImageLayout to,
                    VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t levels = 1,
+                   uint32_t layers = 1);
 void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                     VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 

@@ -21,5 +21,8 @@ inline constexpr size_t kMaxLeavesPerModel = 1'000'000;
 inline constexpr size_t kMaxSceneLeaves = 16'000'000;
 inline constexpr uint32_t kMaxTreeInstances = 1'000'000;
 inline constexpr uint32_t kMaxSceneSpecies = 256;  // leaf texture array layers (Vulkan minimum limit 256)
+// Entries of the renderer's tail leaf buffer (64 MiB): the leaves of partly hidden trees
+// that the per-leaf occlusion test keeps; forest5000 needs about 3 M.
+inline constexpr uint32_t kMaxTailLeaves = 1u << 24;
 
 }  // namespace forest

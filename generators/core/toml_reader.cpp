@@ -1,8 +1,9 @@
 #include "generators/core/toml_reader.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "generators/core/text_file.h"
 
 namespace forest {
 
@@ -43,12 +44,18 @@ void TomlTable::fail(std::string_view key, const std::string& what) const {
 }
 
 void TomlTable::check_keys(std::initializer_list<std::string_view> allowed) const {
+  check_key_groups({std::span<const std::string_view>(allowed.begin(), allowed.size())});
+}
+
+void TomlTable::check_key_groups(std::initializer_list<std::span<const std::string_view>> groups) const {
   for (auto&& [k, v] : *table_) {
     bool ok = false;
-    for (auto a : allowed) ok = ok || a == k.str();
+    for (auto group : groups)
+      for (auto a : group) ok = ok || a == k.str();
     if (!ok) {
       std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      for (auto group : groups)
+        for (auto a : group) list += (list.empty() ? "" : ", ") + std::string(a);
       throw InputError(file_, int(k.source().begin.line), key_path(k.str()),
                        "unknown key (expected one of: " + list + ")");
     }
@@ -125,11 +132,16 @@ std::string TomlTable::string(std::string_view key) const {
 
 std::string TomlTable::choice(std::string_view key, std::string fallback,
                               std::initializer_list<std::string_view> options) const {
+  std::vector<std::string> list(options.begin(), options.end());
+  return choice(key, std::move(fallback), list);
+}
+
+std::string TomlTable::choice(std::string_view key, std::string fallback, std::span<const std::string> options) const {
   std::string v = string(key, fallback);
   std::string list;
-  for (auto o : options) {
+  for (const std::string& o : options) {
     if (o == v) return v;
-    list += (list.empty() ? "" : ", ") + std::string(o);
+    list += (list.empty() ? "" : ", ") + o;
   }
   fail(key, "'" + v + "' is not one of: " + list);
 }
@@ -145,6 +157,13 @@ glm::vec3 TomlTable::vec3(std::string_view key, double lo, double hi) const {
   glm::vec3 v;
   for (int i = 0; i < 3; ++i) v[i] = float(to_number(key, *a->get(size_t(i)), lo, hi));
   return v;
+}
+
+std::filesystem::path TomlTable::existing_file(std::string_view key) const {
+  std::filesystem::path file = string(key);
+  if (file.is_relative()) file = std::filesystem::path(file_).parent_path() / file;
+  if (!std::filesystem::exists(file)) fail(key, "no such file '" + file.string() + "'");
+  return file;
 }
 
 std::optional<TomlTable> TomlTable::table(std::string_view key) const {
@@ -174,11 +193,7 @@ TomlDocument TomlDocument::load(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file, ec)) throw InputError(file.string(), 0, "", "file not found");
   if (std::filesystem::is_directory(file, ec))
     throw InputError(file.string(), 0, "", "is a directory, expected a TOML file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), 0, "", "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), file.string());
+  return parse(read_text_file(file), file.string());
 }
 
 TomlDocument TomlDocument::parse(std::string_view text, const std::string& name) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,6 +26,8 @@ class TomlTable {
   bool has(std::string_view key) const { return table_->contains(key); }
   // Fails on any key not in `allowed`.
   void check_keys(std::initializer_list<std::string_view> allowed) const;
+  // Fails on any key in none of the groups (a species: common keys, the method's, the look's).
+  void check_key_groups(std::initializer_list<std::span<const std::string_view>> groups) const;
 
   double number(std::string_view key, double fallback, double lo, double hi) const;
   double number(std::string_view key, double lo, double hi) const;  // required
@@ -35,8 +38,12 @@ class TomlTable {
   std::string string(std::string_view key) const;  // required
   std::string choice(std::string_view key, std::string fallback,
                      std::initializer_list<std::string_view> options) const;
+  std::string choice(std::string_view key, std::string fallback, std::span<const std::string> options) const;
   glm::vec3 vec3(std::string_view key, glm::vec3 fallback, double lo, double hi) const;
   glm::vec3 vec3(std::string_view key, double lo, double hi) const;  // required
+  // A required file name, relative to this file's folder unless absolute; fails when there
+  // is no such file (input files of a species: drawings, learned models).
+  std::filesystem::path existing_file(std::string_view key) const;
   // Sub-table (optional: empty table view when absent unless required).
   std::optional<TomlTable> table(std::string_view key) const;
   // Array of tables ([[key]]); empty when absent.

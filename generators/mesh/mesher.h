@@ -75,7 +75,7 @@ int ring_sides(float r, float r_max, const MesherParams& params);
 // a cone closes each tip. At a fork all branches (the incoming one, its continuation and the
 // side branches) are cut where they leave the largest pairwise bifurcation sphere, and the cut
 // rings are joined by the convex hull of their projections onto a sphere around the fork
-// (see mesher.cpp). u runs around the branch, v along it in units of the local circumference
+// (see mesher_forks.cpp). u runs around the branch, v along it in units of the local circumference
 // (v = ∫ ds / 2πr, so the bark texture keeps its aspect as the branch thins).
 Mesh mesh_branches(const TreeGraph& graph, const MesherParams& params = {},
                    BranchMeshInfo* info = nullptr);

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "generators/core/limits.h"
 #include "generators/mesh/mesh_lod.h"
+#include "generators/mesh/mesher.h"
 
 namespace forest {
 
@@ -34,31 +36,25 @@ nlohmann::json toml_to_json(const toml::table& table) {
   return out;
 }
 
-namespace {
-thread_local TreeGraph* g_skeleton_sink = nullptr;
-}  // namespace
-
-SkeletonCapture::SkeletonCapture(TreeGraph* sink) : previous(g_skeleton_sink) { g_skeleton_sink = sink; }
-SkeletonCapture::~SkeletonCapture() { g_skeleton_sink = previous; }
-
-TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
-                           const MesherParams& mesher) {
+TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ModelDescription& d) {
   if (graph.leaves.size() > kMaxLeavesPerModel)
     throw InputError(d.species, 0, "leaf_count",
                      std::to_string(graph.leaves.size()) + " leaves, more than the limit of " +
                          std::to_string(kMaxLeavesPerModel) + " per model");
-  if (g_skeleton_sink) *g_skeleton_sink = graph;
+  MesherParams mesher;
+  mesher.min_sides = look.ring_sides_min;
+  mesher.max_sides = look.ring_sides_max;
   TreeModel model;
   model.branches = mesh_branches(graph, mesher);
   optimize_mesh(model.branches);
   static constexpr float kLodFractions[] = {0.5f, 0.25f, 0.12f};
   model.branch_lods = simplify_lods(model.branches, kLodFractions);
-  model.leaf_card = make_leaf_card(d.leaf_shape);
-  model.leaf_texture = make_leaf_texture(d.leaf_shape);
+  model.leaf_card = make_leaf_card(look.leaf_shape);
+  model.leaf_texture = make_leaf_texture(look.leaf_shape);
   model.leaves = graph.leaves;
   model.bounding_sphere = bounding_sphere(model.branches, model.leaf_card, model.leaves);
-  model.bark_color = d.bark_color;
-  model.leaf_color = d.leaf_color;
+  model.bark_color = look.bark_color;
+  model.leaf_color = look.leaf_color;
 
   float height = 0.0f;
   for (const Vertex& v : model.branches.vertices) height = std::max(height, v.position.y);
@@ -82,17 +78,17 @@ TreeModel build_tree_model(const TreeGraph& graph, const ModelDescription& d,
                     {"triangle_count", model.branch_lods[i].mesh.indices.size() / 3},
                     {"error", model.branch_lods[i].error}});
   m["branch_lods"] = lods;
-  m["leaf_shape"] = leaf_shape_name(d.leaf_shape);
+  m["leaf_shape"] = leaf_shape_name(look.leaf_shape);
   const glm::vec4& s = model.bounding_sphere;
   m["bounding_sphere"] = {s.x, s.y, s.z, s.w};
   m["height"] = height;
+  // A method's statistics sit beside the shared entries; overwriting one would make the
+  // metadata of different methods mean different things.
+  for (auto& [key, value] : d.method_meta.items()) {
+    if (m.contains(key)) throw std::logic_error("method metadata '" + key + "' overwrites a shared entry");
+    m[key] = value;
+  }
   return model;
-}
-
-void read_ring_sides(const TomlTable& t, MesherParams& mesher) {
-  mesher.min_sides = int(t.integer("ring_sides_min", mesher.min_sides, 3, 32));
-  mesher.max_sides = int(t.integer("ring_sides_max", mesher.max_sides, 3, 32));
-  if (mesher.max_sides < mesher.min_sides) t.fail("ring_sides_max", "must be >= ring_sides_min");
 }
 
 }  // namespace forest

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "generators/asset/bake_data.h"
 #include "generators/tree/tree_graph.h"
 
 namespace forest {
@@ -42,10 +43,13 @@ struct TreeModel {
   Image8 leaf_texture;                  // mapped on leaf_card by its uv; empty = untextured
   std::vector<LeafPlacement> leaves;    // instances of leaf_card (in priority order once baked)
   Mesh hull;  // metaball hull (bake), empty before bake
+  BakeData bake;  // hull samples, leaf order name, PR tables (bake); extras.forest at the asset boundary
   glm::vec4 bounding_sphere{0.0f};      // xyz center, w radius: encloses branches and leaves
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};  // linear RGB
   glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};  // linear RGB
-  nlohmann::json meta = nlohmann::json::object();  // extras.forest: method, seed, parameters...
+  // extras.forest: method, seed, parameters... (the bake keys of `bake` are added on encode and
+  // taken out on decode: they never appear here)
+  nlohmann::json meta = nlohmann::json::object();
 };
 
 }  // namespace forest

@@ -9,36 +9,27 @@
 #include "generators/methods/mig/mig_method.h"
 #include "generators/methods/mgv/mgv_method.h"
 #include "generators/methods/magnetic/magnetic_method.h"
-#include "generators/model/model_builder.h"
 #include "generators/methods/plantons/plantons_method.h"
-#include "generators/methods/plantons/plantons_samples.h"
 
 namespace forest {
 
 namespace {
 
-// Every modeling method, one line each.
-const MethodEntry kMethods[] = {
-    {"lsystem", generate_lsystem, lsystem_default_species_text, nullptr},
-    {"particle-flow", generate_particle_flow, particle_flow_default_species_text, particle_flow_make_inputs},
-    {"visual-hull", generate_visual_hull, visual_hull_default_species_text, visual_hull_make_inputs},
-    {"sketch-mrf", generate_sketch_mrf, sketch_mrf_default_species_text, sketch_mrf_make_inputs},
-    {"silhouettes", generate_silhouettes, silhouettes_default_species_text, silhouettes_make_inputs},
-    {"mig", generate_mig, mig_default_species_text, nullptr},
-    {"mgv", generate_mgv, mgv_default_species_text, nullptr},
-    {"magnetic", generate_magnetic, magnetic_default_species_text, nullptr},
-    {"plantons", generate_plantons, plantons_default_species_text, plantons_make_inputs},
+// Every modeling method, one line each (pointers: the entries live in the methods' files).
+const MethodEntry* const kMethods[] = {
+    &kLsystemMethod, &kParticleFlowMethod, &kVisualHullMethod, &kSketchMrfMethod, &kSilhouettesMethod,
+    &kMigMethod,     &kMgvMethod,          &kMagneticMethod,   &kPlantonsMethod,
 };
 
 const MethodEntry* find_method(const std::string& id) {
-  for (const MethodEntry& m : kMethods)
-    if (id == m.id) return &m;
+  for (const MethodEntry* m : kMethods)
+    if (id == m->id) return m;
   return nullptr;
 }
 
 std::string known_methods() {
   std::string known;
-  for (const MethodEntry& m : kMethods) known += (known.empty() ? "" : ", ") + std::string(m.id);
+  for (const MethodEntry* m : kMethods) known += (known.empty() ? "" : ", ") + std::string(m->id);
   return known;
 }
 
@@ -52,16 +43,27 @@ TreeModel generate(const TomlDocument& doc, const std::string& species_name,
     if (int(key.source().begin.line) < method_line)
       throw InputError(doc.name(), int(key.source().begin.line), std::string(key.str()),
                        "`method` must be the first key of a species file");
-  if (const MethodEntry* m = find_method(method)) {
-    SkeletonCapture capture(options.skeleton);
-    return m->generate(root, species_name, options);
-  }
-  root.fail("method", "unknown method '" + method + "' (known: " + known_methods() + ")");
+  const MethodEntry* m = find_method(method);
+  if (!m) root.fail("method", "unknown method '" + method + "' (known: " + known_methods() + ")");
+  root.check_key_groups({kCommonSpeciesKeys, m->keys, kLookKeys});
+  root.string("name", "");  // type check before the (possibly long) skeleton pass
+  uint64_t seed = options.seed.value_or(uint64_t(root.integer("seed", 1, 0, int64_t(1) << 53)));
+  // The look before the skeleton: a bad colour fails at once, not after a long simulation.
+  LookKeys look = read_look_keys(root);
+  Skeleton skeleton = m->skeleton(root, seed);
+  ModelDescription d;
+  d.method = m->id;
+  d.species = root.string("name", species_name);
+  d.seed = seed;
+  d.parameters = toml_to_json(root.raw());
+  d.method_meta = std::move(skeleton.meta);
+  if (options.skeleton) *options.skeleton = skeleton.graph;
+  return build_model(skeleton.graph, look, d);
 }
 
 }  // namespace
 
-std::span<const MethodEntry> method_table() { return kMethods; }
+std::span<const MethodEntry* const> method_table() { return kMethods; }
 
 TreeModel generate_from_species(const std::filesystem::path& species_file,
                                 const GenerateOptions& options) {
@@ -77,7 +79,7 @@ TreeModel generate_from_species_text(const std::string& text, const std::string&
 
 std::vector<std::string> method_ids() {
   std::vector<std::string> ids;
-  for (const MethodEntry& m : kMethods) ids.push_back(m.id);
+  for (const MethodEntry* m : kMethods) ids.push_back(m->id);
   return ids;
 }
 
@@ -90,8 +92,8 @@ void make_inputs(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir.string(), 0, "--out", "cannot create folder: " + ec.message());
-  for (const MethodEntry& m : kMethods)
-    if (m.make_inputs) m.make_inputs(dir / m.id);
+  for (const MethodEntry* m : kMethods)
+    if (m->make_inputs) m->make_inputs(dir / m->id);
 }
 
 }  // namespace forest

@@ -1,14 +1,16 @@
-// Species preset (TOML, first key `method`) -> TreeModel, through the method's skeleton pass
-// and the shared mesher. Every method is deterministic for a given seed.
+// Species preset (TOML, first key `method`) -> TreeModel: the registry checks the keys, reads
+// name, seed and the shared look keys, runs the method's skeleton pass and hands the skeleton
+// to the shared model stage (model_builder.h). Every method is deterministic for its seed.
 #pragma once
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "generators/model/tree_model.h"
+#include "generators/model/model_builder.h"
 
 namespace forest {
 
@@ -19,14 +21,20 @@ struct GenerateOptions {
   TreeGraph* skeleton = nullptr;  // when set, receives the skeleton the model was meshed from
 };
 
-// One modeling method. Each lives in generators/methods/<id>_method.{h,cpp} and has one
-// line in the table of methods.cpp.
+// Keys of every species file besides the method's own and the look keys (kLookKeys).
+inline constexpr std::string_view kCommonSpeciesKeys[] = {"method", "name", "seed"};
+
+// One modeling method. Each lives in generators/methods/<id>/, exports its entry from
+// <id>_method.h and has one line in the table of registry.cpp (docs/adding-a-method.md).
 struct MethodEntry {
   const char* id;
-  // `species` is the whole species table (its `method` already checked); paths in it are
-  // relative to the species file (species.file()).
-  TreeModel (*generate)(const TomlTable& species, const std::string& species_name,
-                        const GenerateOptions& options);
+  // The method's own top-level keys; the registry accepts these, kCommonSpeciesKeys and
+  // kLookKeys and refuses every other key before the skeleton pass runs.
+  std::span<const std::string_view> keys;
+  // The skeleton pass: all of the method's randomness, from `seed` only. `species` is the
+  // whole species table (keys already checked); paths in it are relative to the species
+  // file (species.file()). Must not read the look keys: the model stage does.
+  Skeleton (*skeleton)(const TomlTable& species, uint64_t seed);
   // Built-in preset for `forest generate --method ID`; must run without any input file.
   const char* (*default_species_text)();
   // Writes the method's synthetic inputs (masks, poses, strokes, samples) into `dir`;
@@ -34,9 +42,10 @@ struct MethodEntry {
   void (*make_inputs)(const std::filesystem::path& dir);
 };
 
-std::span<const MethodEntry> method_table();
+std::span<const MethodEntry* const> method_table();
 
-// Reads the species file, runs its method, meshes. Bad file -> InputError (file, line, key).
+// Reads the species file, runs its method's skeleton pass and the model stage.
+// Bad file -> InputError (file, line, key).
 TreeModel generate_from_species(const std::filesystem::path& species_file,
                                 const GenerateOptions& options = {});
 // Same, from TOML text (name is used in messages; relative paths resolve against the

@@ -1,46 +1,31 @@
 // forest bench as a user runs it: bad input is one line and exit 2 with nothing written; a
 // short run writes the CSV per mode, the JSON summary against Cook and the two plots.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_run.h"
+
 namespace fs = std::filesystem;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
-const std::string kExe = FOREST_EXE;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-class BenchCliTest : public ::testing::Test {
+class BenchCliTest : public CliDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("forest_bench_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    CliDirTest::SetUp();
     fs::create_directories(dir_ / "out");
   }
-  void TearDown() override { fs::remove_all(dir_); }
   int run(const std::string& args) {
-    std::string cmd = "'" + kExe + "' bench " + args + " >'" + (dir_ / "stdout").string() + "' 2>'" +
-                      (dir_ / "stderr").string() + "' </dev/null";
-    int status = std::system(cmd.c_str());
-    out_ = slurp(dir_ / "stdout"), err_ = slurp(dir_ / "stderr");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    Result r = run_captured(forest_command("bench " + args), dir_);
+    out_ = r.out, err_ = r.err;
+    return r.code;
   }
   // Two fig2_1 trees (the tiny scene's species and bake: a species-cache hit) and a path.
   fs::path scene(bool with_path = true) {
@@ -48,7 +33,7 @@ class BenchCliTest : public ::testing::Test {
                        "[camera]\nposition = [0, 6, -30]\ntarget = [0, 4, 0]\n"
                        "[terrain]\nsize = 100\nresolution = 8\nheight = 0\n"
                        "[bake]\nviews = 2\nresolution = 64\n"
-                       "[[species]]\npreset = \"" + kSource + "/scenes/species/fig2_1.toml\"\nseed = 1\n"
+                       "[[species]]\npreset = \"" + kSourceDir + "/scenes/species/fig2_1.toml\"\nseed = 1\n"
                        "[[tree]]\nspecies = 0\nx = -3\nz = 0\n[[tree]]\nspecies = 0\nx = 4\nz = 6\n";
     if (with_path)
       text += "[[path]]\nname = \"dolly\"\nfps = 2\n"
@@ -59,11 +44,8 @@ class BenchCliTest : public ::testing::Test {
     return p;
   }
   bool out_empty() const { return fs::is_empty(dir_ / "out"); }
-  fs::path dir_;
   std::string out_, err_;
 };
-
-size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
 
 }  // namespace
 

@@ -2,54 +2,24 @@
 // and key, no partial output files, and the happy paths of info/generate/render.
 #include <gtest/gtest.h>
 #include <expat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
+#include <vector>
+
+#include "tests/cli/cli_run.h"
 
 namespace fs = std::filesystem;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
-const std::string kExe = FOREST_EXE;
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-class CliTest : public ::testing::Test {
+class CliTest : public CliDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("forest_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Result run(const std::string& args) {
-    std::string cmd = "'" + kExe + "' " + args + " >'" + (dir_ / "stdout").string() + "' 2>'" +
-                      (dir_ / "stderr").string() + "' </dev/null";
-    int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "stdout");
-    r.err = slurp(dir_ / "stderr");
-    return r;
-  }
+  Result run(const std::string& args) { return run_captured(forest_command(args), dir_); }
   fs::path write(const std::string& name, const std::string& text) {
     fs::path p = dir_ / name;
     std::ofstream(p) << text;
@@ -63,16 +33,13 @@ class CliTest : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-  fs::path dir_;
 };
-
-size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
 
 std::string scene_with(const std::string& body) {
   return "[render]\nwidth = 64\nheight = 48\n"
          "[camera]\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
          "[terrain]\nsize = 100\nresolution = 8\n"
-         "[[species]]\npreset = \"" + kSource + "/scenes/species/broadleaf.toml\"\n" + body +
+         "[[species]]\npreset = \"" + kSourceDir + "/scenes/species/broadleaf.toml\"\n" + body +
          "\n[bake]\nviews = 1\nresolution = 32\n";  // presets are baked on first use: keep it cheap
 }
 
@@ -146,7 +113,7 @@ TEST_F(CliTest, BadSceneFilesFailWithOneLineNamingFileLineKey) {
 
 TEST_F(CliTest, AbsurdLeafCountInModelExitsTwo) {
   // A .glb that declares 10^7 leaves (and stores 4): refused before anything is allocated.
-  const std::string glb = kSource + "/tests/fuzz/corpus/glb/absurd_leaf_count.glb";
+  const std::string glb = kSourceDir + "/tests/fuzz/corpus/glb/absurd_leaf_count.glb";
   fs::path scene = write("s.toml", "[[species]]\nmodel = \"" + glb + "\"\n[[tree]]\nx = 0\nz = 0\n");
   Result r = run("render '" + scene.string() + "' --out '" + (dir_ / "frame.png").string() + "'");
   EXPECT_EQ(r.code, 2) << r.err;
@@ -208,7 +175,7 @@ TEST_F(CliTest, InfoListsDevicesAndFeatures) {
 }
 
 TEST_F(CliTest, GenerateIsDeterministic) {
-  std::string species = kSource + "/scenes/species/fig2_1.toml";
+  std::string species = kSourceDir + "/scenes/species/fig2_1.toml";
   ASSERT_EQ(run("generate --species '" + species + "' --seed 5 --out '" + (dir_ / "a.glb").string() + "'").code, 0);
   ASSERT_EQ(run("generate --method lsystem --species '" + species + "' --seed 5 --out '" + (dir_ / "b.glb").string() + "'").code, 0);
   ASSERT_EQ(run("generate --species '" + species + "' --seed 6 --out '" + (dir_ / "c.glb").string() + "'").code, 0);
@@ -283,7 +250,7 @@ TEST_F(CliTest, RenderWritesPngAndNothingElse) {
 }
 
 TEST_F(CliTest, BakeReportAndRenderOpt) {
-  std::string species = kSource + "/scenes/species/broadleaf.toml";
+  std::string species = kSourceDir + "/scenes/species/broadleaf.toml";
   fs::path raw = dir_ / "raw.glb", baked = dir_ / "baked.glb", report = dir_ / "report";
   ASSERT_EQ(run("generate --species '" + species + "' --out '" + raw.string() + "'").code, 0);
   Result b = run("bake '" + raw.string() + "' --out '" + baked.string() + "' --views 2 --resolution 64 --priority combined");
@@ -392,7 +359,7 @@ TEST_F(CliTest, GenerateSvgWritesOnePolylinePerCurve) {
 TEST_F(CliTest, GenerateSvgNeedsPlanarCurves) {
   fs::path svg = dir_ / "x.svg", glb = dir_ / "x.glb";
   // A method without curves: one line naming the key, exit 2, no file at all.
-  Result r = run("generate --species '" + kSource + "/scenes/species/broadleaf.toml' --out '" + glb.string() +
+  Result r = run("generate --species '" + kSourceDir + "/scenes/species/broadleaf.toml' --out '" + glb.string() +
                  "' --svg '" + svg.string() + "'");
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(lines(r.err), 1u) << r.err;

@@ -3,32 +3,21 @@
 // SVG each give exit code 2, one line naming the file (and line where there is one), and no
 // output file.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "engine/present/image_io.h"
+#include "tests/cli/cli_run.h"
 
 namespace fs = std::filesystem;
+using namespace forest::test;
 
 namespace {
 
-class CliImageInputs : public ::testing::Test {
+class CliImageInputs : public CliDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("forest_cli_img_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name, std::ios::binary) << text;
     return dir_ / name;
@@ -36,18 +25,14 @@ class CliImageInputs : public ::testing::Test {
   // Runs `forest generate` on a species file; returns the exit code, stderr in err_.
   int generate(const std::string& species_text) {
     fs::path species = write("s.toml", species_text);
-    std::string cmd = std::string("'") + FOREST_EXE + "' generate --species '" + species.string() + "' --out '" +
-                      (dir_ / "t.glb").string() + "' >/dev/null 2>'" + (dir_ / "err").string() + "' </dev/null";
-    int status = std::system(cmd.c_str());
-    std::ifstream in(dir_ / "err");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    err_ = ss.str();
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    Result r = run_captured(
+        forest_command("generate --species '" + species.string() + "' --out '" + (dir_ / "t.glb").string() + "'"), dir_);
+    err_ = r.err;
+    return r.code;
   }
   void expect_one_line_error(const std::string& species_text, const std::string& where, const std::string& what) {
     EXPECT_EQ(generate(species_text), 2) << err_;
-    EXPECT_EQ(std::count(err_.begin(), err_.end(), '\n'), 1) << err_;
+    EXPECT_EQ(lines(err_), 1u) << err_;
     EXPECT_NE(err_.find(where), std::string::npos) << err_;
     EXPECT_NE(err_.find(what), std::string::npos) << err_;
     EXPECT_FALSE(fs::exists(dir_ / "t.glb"));
@@ -56,12 +41,8 @@ class CliImageInputs : public ::testing::Test {
   std::string oak_views() {
     fs::path src = fs::path(FOREST_SOURCE_DIR) / "scenes/inputs/particle-flow/oak";
     for (const char* f : {"views.json", "view0.png", "view1.png"}) fs::copy_file(src / f, dir_ / f);
-    std::ifstream in(dir_ / "views.json");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    return slurp(dir_ / "views.json");
   }
-  fs::path dir_;
   std::string err_;
 };
 

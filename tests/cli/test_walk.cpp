@@ -3,24 +3,20 @@
 // swapchain, its recreation, the present step and the HUD; the screenshot is read back from
 // the swapchain image, so it shows what the window showed.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 
 #include "engine/present/image_io.h"
+#include "tests/cli/cli_run.h"
 
 namespace fs = std::filesystem;
+using namespace forest::test;
 
 namespace {
-
-const std::string kSource = FOREST_SOURCE_DIR;
-const std::string kExe = FOREST_EXE;
 
 // A light scene (8 small trees, 320x200, no MSAA) so 30 lavapipe frames stay cheap; the
 // camera looks a little up so sky shows below the HUD panel.
@@ -28,39 +24,23 @@ std::string light_scene(const std::string& view) {
   return "[render]\nwidth = 320\nheight = 200\nsamples = 1\nlod_error_pixels = 4\nview = \"" + view + "\"\n"
          "[camera]\nposition = [0, 6, -30]\ntarget = [0, 9, 0]\nfov = 50\n"
          "[terrain]\nsize = 120\nresolution = 16\nheight = 3\nseed = 3\n"
-         "[[species]]\npreset = \"" + kSource + "/scenes/species/fig2_1.toml\"\nseed = 1\n"
+         "[[species]]\npreset = \"" + kSourceDir + "/scenes/species/fig2_1.toml\"\nseed = 1\n"
          "[placement]\ncount = 8\nseed = 7\nmin_spacing = 5\nradius = 14\n";
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-class WalkTest : public ::testing::Test {
+class WalkTest : public CliDirTest {
  protected:
   void SetUp() override {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
       GTEST_SKIP() << "xvfb-run is missing (apt-get install xvfb; scripts/test.sh installs it)";
-    dir_ = fs::temp_directory_path() / ("forest_walk_" + std::to_string(getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!dir_.empty()) fs::remove_all(dir_);
+    CliDirTest::SetUp();
   }
   int run(const std::string& args, bool window = true, const std::string& prefix = "") {
-    std::string cmd = prefix + (window ? "xvfb-run -a " : "") + "'" + kExe + "' " + args + " >'" +
-                      (dir_ / "stdout").string() + "' 2>'" + (dir_ / "stderr").string() + "' </dev/null";
-    int status = std::system(cmd.c_str());
-    out_ = slurp(dir_ / "stdout");
-    err_ = slurp(dir_ / "stderr");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    Result r = run_captured(prefix + (window ? "xvfb-run -a " : "") + forest_command(args), dir_);
+    out_ = r.out;
+    err_ = r.err;
+    return r.code;
   }
-  fs::path dir_;
   std::string out_, err_;
 };
 
@@ -133,7 +113,7 @@ TEST_F(WalkTest, BadSceneExitsTwoBeforeOpeningAWindow) {
   std::ofstream(scene) << "[render]\nwidth = -3\n";
   EXPECT_EQ(run("walk '" + scene.string() + "' --frames 1", false), 2);
   EXPECT_NE(err_.find("render.width"), std::string::npos) << err_;
-  EXPECT_EQ(std::count(err_.begin(), err_.end(), '\n'), 1) << err_;
+  EXPECT_EQ(lines(err_), 1u) << err_;
 }
 
 TEST_F(WalkTest, NoDisplayIsOneClearLine) {
@@ -143,7 +123,7 @@ TEST_F(WalkTest, NoDisplayIsOneClearLine) {
                 false, "env -u DISPLAY -u WAYLAND_DISPLAY "),
             1);
   EXPECT_NE(err_.find("cannot open a window"), std::string::npos) << err_;
-  EXPECT_EQ(std::count(err_.begin(), err_.end(), '\n'), 1) << err_;
+  EXPECT_EQ(lines(err_), 1u) << err_;
   EXPECT_FALSE(fs::exists(dir_ / "x.png"));
 }
 

@@ -10,7 +10,6 @@
 
 #include "engine/scene/scene_file.h"
 #include "generators/asset/asset_io.h"
-#include "generators/asset/pr_tables.h"
 #include "generators/core/input_error.h"
 #include "generators/core/toml_reader.h"
 #include "generators/methods/common/image_inputs.h"
@@ -92,8 +91,7 @@ void species_input(Bytes bytes) {
 
 void glb_input(Bytes bytes) {
   refuse_or_accept([&] {
-    TreeModel model = decode_glb(bytes, "fuzz.glb");
-    read_pr_tables(model.meta, "fuzz.glb");
+    TreeModel model = decode_glb(bytes, "fuzz.glb");  // bake data (extras.forest) validated here
     // What we accept we must be able to write and read back.
     std::vector<uint8_t> again = encode_glb(model);
     try {
@@ -102,6 +100,11 @@ void glb_input(Bytes bytes) {
       bool leaves_kept = model.leaf_card.indices.empty() || back.leaves.size() == model.leaves.size();
       if (!leaves_kept || back.branches.indices.size() != model.branches.indices.size())
         throw std::logic_error("glb round trip changed the model");
+      const BakeData &a = model.bake, &b = back.bake;
+      if (a.hull.has_value() != b.hull.has_value() || (a.hull && a.hull->points != b.hull->points) ||
+          a.priority != b.priority || a.baked() != b.baked() || a.pr_samples.size() != b.pr_samples.size() ||
+          (a.pr_tables && a.pr_tables->s_opt != b.pr_tables->s_opt))
+        throw std::logic_error("glb round trip changed the bake data");
     } catch (const InputError& e) {
       throw std::logic_error(std::string("an accepted .glb does not round-trip: ") + e.what());
     }

@@ -14,7 +14,7 @@ using Bytes = std::span<const uint8_t>;
 
 void scene_input(Bytes bytes);    // engine/scene/scene_file: parse_scene_text
 void species_input(Bytes bytes);  // generators/common/toml_reader: every typed accessor
-void glb_input(Bytes bytes);      // generators/bake/asset_io: decode_glb + pr_tables
+void glb_input(Bytes bytes);      // generators/asset: decode_glb (bake data included)
 void strokes_input(Bytes bytes);  // generators/methods/strokes_io: JSON (first byte even) or SVG
 void mask_input(Bytes bytes);     // generators/methods/image_inputs: load_mask (OIIO)
 void views_input(Bytes bytes);    // generators/methods/image_inputs: load_view_set

@@ -1,7 +1,6 @@
 // `forest gallery` on a small species folder: one labelled cell per preset, in name order,
 // each showing its tree, rendered under the validation layer.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +8,7 @@
 
 #include "engine/tools/gallery/gallery.h"
 #include "generators/core/input_error.h"
+#include "tests/common/test_files.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
@@ -21,9 +21,7 @@ const fs::path kSpecies = fs::path(FOREST_SOURCE_DIR) / "scenes" / "species";
 class GalleryTest : public ValidatedGpuTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("forest_gallery_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::fresh_temp_dir("forest_gallery");
     ValidatedGpuTest::SetUp();
   }
   void TearDown() override {

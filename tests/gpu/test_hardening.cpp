@@ -9,63 +9,44 @@
 #include "engine/scene/scene.h"
 #include "generators/asset/pr_tables.h"
 #include "generators/species/registry.h"
+#include "tests/gpu/gpu_scenes.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
-
 // 120 broadleaf trees on hills, seen from the side so that distances (and λ) vary.
-const char* kScene = R"(
-[render]
-width = 160
-height = 120
-samples = 4
-mode = "opt"
-prune_distance = 120
-[camera]
-position = [0, 12, -70]
-target = [0, 3, 0]
-fov = 50
-[terrain]
-size = 200
-resolution = 32
-height = 4.0
-seed = 3
-[[species]]
-preset = "species/broadleaf.toml"
-seed = 11
-[placement]
-count = 120
-seed = 5
-min_spacing = 3
-radius = 60
-)";
+const std::string kScene =
+    SceneText{.samples = 4,
+              .render = "mode = \"opt\"\nprune_distance = 120\n",
+              .position = {0.0f, 12.0f, -70.0f},
+              .target = {0.0f, 3.0f, 0.0f},
+              .terrain_height = 4.0f,
+              .extra = "[placement]\ncount = 120\nseed = 5\nmin_spacing = 3\nradius = 60\n"}
+        .str();
 
 // Pruning tables that keep λ = 1 − d and grow leaves as they drop (s = 1/λ, capped).
 PrTables ramp_tables() {
   PrTables t;
   for (int i = 0; i < S_SAMPLES; ++i) {
     float l = float(i) / float(S_SAMPLES - 1);
-    t.lambda.push_back(l);
     t.s_opt.push_back(l > 0.1f ? 1.0f / l : 10.0f);
     t.q_opt.push_back(1.0f);
     t.q_inverse.push_back(1.0f);
   }
   for (int i = 0; i < D_SAMPLES; ++i) {
     float d = float(i) / float(D_SAMPLES - 1);
-    t.d.push_back(d);
     t.lambda_opt.push_back(1.0f - d);
-    t.lambda_cook.push_back((1.0f - d) * (1.0f - d));
   }
   return t;
 }
 
 Scene pruned_scene() {
-  SceneDesc desc = parse_scene_text(kScene, "hardening.toml", kSource + "/scenes");
+  SceneDesc desc = parse_scene(kScene, "hardening.toml");
   Scene scene = build_scene(desc);
-  scene.models[0].meta["pr_tables"] = to_json(ramp_tables());
+  scene.models[0].bake.pr_tables = ramp_tables();
   return scene;
 }
 
@@ -102,10 +83,7 @@ std::vector<uint32_t> leaves_per_frame(vk::Context& ctx, const Scene& scene, Fra
 
 TEST(GpuHardening, FullPrunedFramesPassSynchronizationValidation) {
   vk::Context ctx;
-  vk::ContextOptions options;
-  options.validation = true;
-  options.synchronization_validation = true;
-  vk::create_context(ctx, options);
+  vk::create_context(ctx, validation_options(/*synchronization=*/true));
   {
     Scene scene = pruned_scene();
     FrameImage image;
@@ -121,15 +99,12 @@ TEST(GpuHardening, FullPrunedFramesPassSynchronizationValidation) {
     // A second run over the same path (a fresh renderer) draws the same leaves per frame.
     EXPECT_EQ(leaves_per_frame(ctx, scene, nullptr), first);
   }
-  vk::destroy_context(ctx);
-  EXPECT_EQ(ctx.validation_messages.load(), 0u) << "last: " << ctx.last_validation_message;
+  destroy_validated_context(ctx);
 }
 
 TEST(GpuHardening, BufferBeyondTheDeviceIsReportedNotCrashed) {
   vk::Context ctx;
-  vk::ContextOptions options;
-  options.validation = true;
-  vk::create_context(ctx, options);
+  vk::create_context(ctx, validation_options());
   try {
     vk::Buffer b = vk::create_buffer(ctx, VkDeviceSize(1) << 52, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                      vk::MemoryUse::device);
@@ -138,18 +113,14 @@ TEST(GpuHardening, BufferBeyondTheDeviceIsReportedNotCrashed) {
   } catch (const vk::VkFailure& e) {
     EXPECT_NE(std::string(e.what()).find("out of GPU memory"), std::string::npos) << e.what();
   }
-  vk::destroy_context(ctx);
-  EXPECT_EQ(ctx.validation_messages.load(), 0u) << "last: " << ctx.last_validation_message;
+  destroy_validated_context(ctx);
 }
 
 TEST(GpuHardening, SynchronizationValidationIsReallyOn) {
   // Two writes to one buffer without a barrier between them: a write-after-write hazard that
   // only synchronization validation reports. Proves the test above checks something.
   vk::Context ctx;
-  vk::ContextOptions options;
-  options.validation = true;
-  options.synchronization_validation = true;
-  vk::create_context(ctx, options);
+  vk::create_context(ctx, validation_options(/*synchronization=*/true));
   vk::Buffer b = vk::create_buffer(ctx, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::device);
   vk::submit_now(ctx, [&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, b.buffer, 0, 256, 1u);

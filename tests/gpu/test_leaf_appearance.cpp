@@ -10,13 +10,28 @@
 #include "engine/scene/scene.h"
 #include "generators/mesh/leaf_texture.h"
 #include "generators/mesh/mesher.h"
+#include "tests/gpu/gpu_scenes.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
+// The camera 8 m before the wall (at z = 0) over flat ground; no species: the test places its model.
+const std::string kWallScene = SceneText{.width = std::nullopt,
+                                         .height = std::nullopt,
+                                         .samples = std::nullopt,
+                                         .render = "mode = \"full\"\n",
+                                         .position = {0.0f, 6.0f, -8.0f},
+                                         .target = {0.0f, 6.0f, 0.0f},
+                                         .fov = 40.0f,
+                                         .terrain_size = 100.0f,
+                                         .terrain_resolution = 4,
+                                         .terrain_height = 0.0f,
+                                         .terrain_seed = std::nullopt,
+                                         .species = ""}
+                                   .str();
 
 // A "tree" that is a wall of needle cards in the plane z = 0, tiled edge to edge so that the
 // wall covers exactly what the texture covers; the bark is one small triangle behind it.
@@ -52,24 +67,9 @@ float linear(uint8_t v) {
 class LeafAppearance : public ValidatedGpuTest {
  protected:
   Measure render(const TreeModel& model, uint32_t size, uint32_t samples) {
-    Scene s;
-    s.desc = parse_scene_text(R"(
-[render]
-mode = "full"
-[camera]
-position = [0, 6, -8]
-target = [0, 6, 0]
-fov = 40
-[terrain]
-size = 100
-resolution = 4
-height = 0.0
-)",
-                              "wall.toml", kSource + "/scenes");
-    s.desc.trees = {TreeDesc{}};
-    s.terrain = make_terrain(s.desc.terrain);
-    s.models.push_back(model);
-    s.instances = place_trees(s.desc, s.terrain);
+    SceneDesc desc = parse_scene(kWallScene, "wall.toml");
+    desc.trees = {TreeDesc{}};
+    Scene s = scene_of(std::move(desc), {model});
     Renderer renderer(ctx_, s, size, size, samples);
     FrameImage image;
     renderer.render(s.desc.camera, &image);

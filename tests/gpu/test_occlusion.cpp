@@ -11,20 +11,20 @@
 #include "engine/render/renderer.h"
 #include "generators/bake/hull/hull.h"
 #include "generators/species/registry.h"
+#include "tests/gpu/gpu_scenes.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
-
-const std::string kSource = FOREST_SOURCE_DIR;
 
 class OcclusionTest : public ValidatedGpuTest {};
 
 // The broadleaf preset with its metaball hull attached (the hull samples a bake writes).
 const TreeModel& broadleaf_with_hull() {
   static const TreeModel model = [] {
-    TreeModel m = generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11});
+    TreeModel m = broadleaf();
     attach_hull(m, build_hull(m.leaves, plant_height(m)));
     return m;
   }();
@@ -39,22 +39,12 @@ TreeModel dense(TreeModel m) {
 
 // Flat ground, no fog, hand-placed trees of `models`.
 Scene make_scene(std::vector<TreeModel> models, std::vector<TreeDesc> trees) {
-  Scene s;
-  s.desc.width = 160;
-  s.desc.height = 120;
-  s.desc.samples = 1;
-  s.desc.sky.fog_density = 0.0f;
-  s.desc.terrain.size = 200.0f;
-  s.desc.terrain.resolution = 8;
-  s.desc.terrain.height = 0.0f;
-  s.desc.trees = std::move(trees);
-  s.desc.camera.position = {0.0f, 6.7f, -20.0f};
-  s.desc.camera.target = {0.0f, 6.7f, 0.0f};
-  s.desc.camera.fov_deg = 45.0f;
-  s.terrain = make_terrain(s.desc.terrain);
-  s.models = std::move(models);
-  s.instances = place_trees(s.desc, s.terrain);
-  return s;
+  SceneDesc desc = flat_ground(160, 120, 200.0f);
+  desc.trees = std::move(trees);
+  desc.camera.position = {0.0f, 6.7f, -20.0f};
+  desc.camera.target = {0.0f, 6.7f, 0.0f};
+  desc.camera.fov_deg = 45.0f;
+  return scene_of(std::move(desc), std::move(models));
 }
 
 // Fig 7.13: a row of three dense trees (model 0) across the view, crowns side by side, one
@@ -222,7 +212,7 @@ TEST_F(OcclusionTest, HiddenPruningStaysInvisibleWhileTheCameraMoves) {
   Renderer plain_renderer(ctx_, s, 160, 120, 1), occl_renderer(ctx_, s, 160, 120, 1);
   FrameSettings plain, occl;
   plain.mask = occl.mask = true;
-  plain.prune_mode = occl.prune_mode = PRUNE_COOK;
+  plain.prune_mode = occl.prune_mode = PruneMode::cook;
   occl.occlusion = true;
   uint64_t drawn = 0, drawn_without = 0;
   double worst_q = 1.0;

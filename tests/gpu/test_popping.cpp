@@ -11,13 +11,13 @@
 #include "engine/tools/bake/tree_bake.h"
 #include "engine/scene/scene.h"
 #include "generators/species/registry.h"
+#include "tests/gpu/gpu_scenes.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
-
-const std::string kSource = FOREST_SOURCE_DIR;
 
 class PoppingTest : public ValidatedGpuTest {};
 
@@ -25,7 +25,7 @@ class PoppingTest : public ValidatedGpuTest {};
 const TreeModel& baked_broadleaf(vk::Context& ctx) {
   static TreeModel model;
   if (model.leaves.empty()) {
-    model = generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11});
+    model = broadleaf();
     TreeBakeSettings bake;
     bake.views = 1;
     bake.resolution = 64;
@@ -36,23 +36,13 @@ const TreeModel& baked_broadleaf(vk::Context& ctx) {
 
 // A grove of 40 trees on flat ground, pruned over 120 m.
 Scene grove(const TreeModel& m) {
-  Scene s;
-  s.desc.width = 240;
-  s.desc.height = 160;
-  s.desc.samples = 1;
-  s.desc.sky.fog_density = 0.0f;
-  s.desc.terrain.size = 400.0f;
-  s.desc.terrain.resolution = 8;
-  s.desc.terrain.height = 0.0f;
-  s.desc.prune_distance = 120.0f;
-  s.desc.placement.count = 40;
-  s.desc.placement.seed = 21;
-  s.desc.placement.min_spacing = 4.0f;
-  s.desc.placement.radius = 35.0f;
-  s.terrain = make_terrain(s.desc.terrain);
-  s.models.push_back(m);
-  s.instances = place_trees(s.desc, s.terrain);
-  return s;
+  SceneDesc desc = flat_ground(240, 160, 400.0f);
+  desc.prune_distance = 120.0f;
+  desc.placement.count = 40;
+  desc.placement.seed = 21;
+  desc.placement.min_spacing = 4.0f;
+  desc.placement.radius = 35.0f;
+  return scene_of(std::move(desc), {m});
 }
 
 // Flying at 9 m/s and 30 fps (0.3 m a frame) from 95 m out to the grove's edge:
@@ -94,12 +84,12 @@ TEST_F(PoppingTest, LodStepsFlipOnlySmallScatteredGroupsOfPixels) {
   Renderer r(ctx_, s, s.desc.width, s.desc.height, 1);
   const uint64_t max_blob = uint64_t(s.desc.width) * s.desc.height * 8 / 10000;
   std::vector<CameraDesc> path = approach();
-  for (uint32_t mode : {PRUNE_COOK, PRUNE_OPT}) {
-    SCOPED_TRACE(mode == PRUNE_COOK ? "cook" : "opt");
+  for (PruneMode mode : {PruneMode::cook, PruneMode::opt}) {
+    SCOPED_TRACE(mode == PruneMode::cook ? "cook" : "opt");
     FrameSettings settings;
     settings.prune_mode = mode;
     PopWalk w = measure_popping(r, path, settings);
-    print(mode == PRUNE_COOK ? "cook" : "opt", w);
+    print(mode == PruneMode::cook ? "cook" : "opt", w);
     EXPECT_LE(w.worst_solid_blob().largest_solid_blob, max_blob);
     EXPECT_LE(w.mean_share(), 0.02);
     EXPECT_GT(w.mean_share(), 0.0) << "λ changes along the walk: some pixels must flip";
@@ -108,7 +98,7 @@ TEST_F(PoppingTest, LodStepsFlipOnlySmallScatteredGroupsOfPixels) {
   s.desc.lod_error_pixels = 8.0f;
   Renderer popping(ctx_, s, s.desc.width, s.desc.height, 1);
   FrameSettings cook;
-  cook.prune_mode = PRUNE_COOK;
+  cook.prune_mode = PruneMode::cook;
   PopWalk w = measure_popping(popping, path, cook);
   print("cook without band, 8 px LOD error", w);
   EXPECT_GT(w.worst_solid_blob().largest_solid_blob, max_blob) << "the measurement does not see discrete LOD pops";

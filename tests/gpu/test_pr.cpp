@@ -7,17 +7,15 @@
 #include "engine/tools/gallery/contact_sheet.h"
 #include "engine/tools/bake/pr_bake.h"
 #include "generators/species/registry.h"
+#include "tests/gpu/gpu_scenes.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
-
 class PrTest : public ValidatedGpuTest {};
-
-TreeModel broadleaf() { return generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11}); }
 
 }  // namespace
 
@@ -27,7 +25,7 @@ TEST_F(PrTest, CountsMatchTheCpuOnReadBackMasks) {
   Renderer r(ctx_, scene, 96, 96, 1);
   CameraDesc cam = orbit_camera(m.bounding_sphere, 0.7f, 0.2f, 30.0f);
   FrameSettings full, pruned;
-  pruned.prune_mode = PRUNE_FIXED;
+  pruned.prune_mode = PruneMode::fixed;
   pruned.fixed_lambda = 0.3f;
   pruned.fixed_scale = 2.0f;
   r.render_reference(cam, full);
@@ -56,10 +54,7 @@ TEST_F(PrTest, CountsMatchTheCpuOnReadBackMasks) {
 
 TEST_F(PrTest, TablesHaveThePaperProperties) {
   TreeModel m = broadleaf();
-  PrBakeOptions o;
-  o.resolution = 128;
-  o.views = 4;
-  o.scale_candidates = 8;
+  const PrBakeOptions o{.resolution = 128, .views = 4, .scale_candidates = 8};
   PrMeasurement pm = measure_pr_tables(ctx_, m, o);
   const PrTables& t = pm.tables;
   ASSERT_EQ(t.s_opt.size(), size_t(S_SAMPLES));
@@ -78,7 +73,7 @@ TEST_F(PrTest, TablesHaveThePaperProperties) {
   EXPECT_LT(t.q_opt[2], 0.95f) << "λ = 0.1 should visibly lose quality";
   // λ_opt never exceeds Cook's λ at the same distance, and never grows with distance.
   for (int j = 0; j < D_SAMPLES; ++j) {
-    EXPECT_LE(t.lambda_opt[j], t.lambda_cook[j] + 1e-6f) << j;
+    EXPECT_LE(t.lambda_opt[j], pr_lambda_cook(uint32_t(j)) + 1e-6f) << j;
     if (j > 0) {
       EXPECT_LE(t.lambda_opt[j], t.lambda_opt[j - 1] + 1e-6f) << j;
     }
@@ -91,7 +86,7 @@ TEST_F(PrTest, QualityNearlyIndependentOfPixelSize) {
   Scene big = make_model_scene(m, 192, 1), small = make_model_scene(m, 96, 1);
   Renderer rb(ctx_, big, 192, 192, 1), rs(ctx_, small, 96, 96, 1);
   FrameSettings full, pruned;
-  pruned.prune_mode = PRUNE_FIXED;
+  pruned.prune_mode = PruneMode::fixed;
   pruned.fixed_lambda = 0.4f;
   pruned.fixed_scale = 1.8f;
   PrResult qb, qs;
@@ -121,7 +116,7 @@ TEST_F(PrTest, BatchedCountsEqualOneRenderPerSubmit) {
   for (size_t i = 0; i < jobs.size(); ++i) {
     SCOPED_TRACE(i);
     FrameSettings full, test;
-    test.prune_mode = PRUNE_FIXED;
+    test.prune_mode = PruneMode::fixed;
     test.fixed_lambda = jobs[i].lambda;
     test.fixed_scale = jobs[i].scale;
     r.render_reference(cams[jobs[i].view], full);
@@ -137,11 +132,7 @@ TEST_F(PrTest, BatchedCountsEqualOneRenderPerSubmit) {
 
 TEST_F(PrTest, ScaleSearchFindsTheExhaustiveOptimum) {
   TreeModel m = broadleaf();
-  PrBakeOptions o;
-  o.resolution = 80;
-  o.views = 2;
-  o.scale_candidates = 10;
-  o.search_scale = false;
+  PrBakeOptions o{.resolution = 80, .views = 2, .scale_candidates = 10, .search_scale = false};
   PrMeasurement all = measure_pr_tables(ctx_, m, o);
   o.search_scale = true;
   PrMeasurement found = measure_pr_tables(ctx_, m, o);

@@ -9,36 +9,19 @@
 #include "engine/tools/gallery/contact_sheet.h"
 #include "engine/render/renderer.h"
 #include "generators/asset/pr_tables.h"
-#include "generators/species/registry.h"
 #include "prune_math.h"
 #include "engine/scene/scene.h"
+#include "tests/gpu/gpu_scenes.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
-
 // Single-sampled unless asked: lavapipe's cost grows with the sample count.
-std::string tiny_scene(const std::string& extra, int samples = 1) {
-  return R"(
-[render]
-width = 160
-height = 120
-samples = )" + std::to_string(samples) + R"(
-[camera]
-position = [0, 6, -24]
-target = [0, 5, 0]
-fov = 50
-[terrain]
-size = 200
-resolution = 32
-height = 1.0
-seed = 3
-[[species]]
-preset = "species/broadleaf.toml"
-seed = 11
-)" + extra;
+std::string tiny_scene(const std::string& extra, uint32_t samples = 1) {
+  return SceneText{.samples = samples, .extra = extra}.str();
 }
 
 struct Rendered {
@@ -47,26 +30,16 @@ struct Rendered {
   Scene scene;
 };
 
-class GpuTest : public ::testing::Test {
+class GpuTest : public ValidatedGpuTest {
  protected:
-  void SetUp() override {
-    vk::ContextOptions options;
-    options.validation = true;  // every GPU test runs under the Khronos validation layer
-    vk::create_context(ctx_, options);
-  }
-  void TearDown() override {
-    vk::destroy_context(ctx_);
-    EXPECT_EQ(ctx_.validation_messages.load(), 0u) << "last: " << ctx_.last_validation_message;
-  }
   Rendered render(const std::string& text) {
     Rendered r;
-    SceneDesc desc = parse_scene_text(text, "test.toml", kSource + "/scenes");
+    SceneDesc desc = parse_scene(text);
     r.scene = build_scene(desc);
     Renderer renderer(ctx_, r.scene, desc.width, desc.height, desc.samples);
     r.stats = renderer.render(desc.camera, &r.image);
     return r;
   }
-  vk::Context ctx_;
 };
 
 bool is_sky(const uint8_t* p) { return p[2] > p[0] && p[2] >= p[1] && p[2] > 120; }
@@ -163,16 +136,10 @@ TEST_F(GpuTest, TreeBehindCameraIsCulledOnTheGpu) {
 TEST_F(GpuTest, ThousandInstancesAllVisibleFromAbove) {
   // Camera high above, looking down: every tree is in the frustum, so the GPU must emit one
   // branch and one leaf draw per instance and draw every leaf of every tree.
-  std::string text = tiny_scene(R"(
-[placement]
-count = 1000
-seed = 5
-min_spacing = 2.0
-radius = 60
-)");
-  text.replace(text.find("position = [0, 6, -24]"), 22, "position = [0, 400, -1]");
-  text.replace(text.find("target = [0, 5, 0]"), 18, "target = [0, 0, 0]");
-  Rendered r = render(text);
+  Rendered r = render(SceneText{.position = {0.0f, 400.0f, -1.0f},
+                                 .target = {0.0f, 0.0f, 0.0f},
+                                 .extra = "[placement]\ncount = 1000\nseed = 5\nmin_spacing = 2.0\nradius = 60\n"}
+                          .str());
   ASSERT_EQ(r.stats.instances, 1000u);
   EXPECT_EQ(r.stats.branch_draws, 1000u);
   EXPECT_EQ(r.stats.leaf_draws, 1000u);
@@ -208,19 +175,11 @@ TEST_F(GpuTest, MultisamplingResolvesEdgesOnly) {
 namespace {
 // A scene holding one model, built directly (no species file): for engine-only properties.
 Scene single_model_scene(TreeModel model, std::vector<TreeDesc> trees, float lod_error_pixels = 1.0f) {
-  Scene s;
-  s.desc = parse_scene_text(tiny_scene(""), "test.toml", kSource + "/scenes");
-  s.desc.species.clear();
-  s.desc.trees = std::move(trees);
-  s.desc.lod_error_pixels = lod_error_pixels;
-  s.terrain = make_terrain(s.desc.terrain);
-  s.models.push_back(std::move(model));
-  s.instances = place_trees(s.desc, s.terrain);
-  return s;
-}
-
-TreeModel broadleaf() {
-  return generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11});
+  SceneDesc desc = parse_scene(tiny_scene(""));
+  desc.species.clear();
+  desc.trees = std::move(trees);
+  desc.lod_error_pixels = lod_error_pixels;
+  return scene_of(std::move(desc), {std::move(model)});
 }
 }  // namespace
 
@@ -311,17 +270,11 @@ TEST_F(GpuTest, TurntableFramesTheModel) {
 TEST_F(GpuTest, CookLeafCountsMatchCpuReference) {
   // Every tree visible from above; the GPU's per-tree λ = (1 − d)² and k = ⌈λN⌉ summed must
   // equal the same arithmetic (shaders/prune_math.h) done here.
-  std::string text = tiny_scene(R"(
-[placement]
-count = 300
-seed = 9
-min_spacing = 2.0
-radius = 60
-)");
-  text.replace(text.find("position = [0, 6, -24]"), 22, "position = [0, 150, -1]");
-  text.replace(text.find("target = [0, 5, 0]"), 18, "target = [0, 0, 0]");
-  text.insert(text.find("samples = 1") + 11, "\nmode = \"cook\"\nprune_distance = 220");
-  Rendered r = render(text);
+  Rendered r = render(SceneText{.render = "mode = \"cook\"\nprune_distance = 220\n",
+                                 .position = {0.0f, 150.0f, -1.0f},
+                                 .target = {0.0f, 0.0f, 0.0f},
+                                 .extra = "[placement]\ncount = 300\nseed = 9\nmin_spacing = 2.0\nradius = 60\n"}
+                          .str());
   ASSERT_EQ(r.stats.branch_draws, 300u);
   const TreeModel& m = r.scene.models[0];
   uint64_t expected = 0;
@@ -347,26 +300,23 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   // A model whose tables say λ = 1 and s = 1 everywhere must render exactly like `full`.
   TreeModel m = broadleaf();
   PrTables t;
-  t.lambda.assign(S_SAMPLES, 0.0f);
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
-  t.d.assign(D_SAMPLES, 0.0f);
   t.lambda_opt.assign(D_SAMPLES, 1.0f);
-  t.lambda_cook.assign(D_SAMPLES, 1.0f);
-  m.meta["pr_tables"] = to_json(t);
+  m.bake.pr_tables = t;
   std::vector<TreeDesc> trees = {{0, 0.0f, 0.0f, 1.0f, 0.0f}, {0, 5.0f, 20.0f, 1.0f, 30.0f}};
   Scene s = single_model_scene(m, trees);
   Renderer r(ctx_, s, 160, 120, 1);
   FrameSettings full, opt;
-  opt.prune_mode = PRUNE_OPT;
+  opt.prune_mode = PruneMode::opt;
   FrameImage a, b;
   FrameStats sa = r.render(s.desc.camera, &a, full), sb = r.render(s.desc.camera, &b, opt);
   EXPECT_EQ(sa.leaves_drawn, sb.leaves_drawn);
   EXPECT_EQ(a.rgba, b.rgba);
   // And tables that halve λ draw half the leaves.
   t.lambda_opt.assign(D_SAMPLES, 0.5f);
-  m.meta["pr_tables"] = to_json(t);
+  m.bake.pr_tables = t;
   Scene half = single_model_scene(m, trees);
   Renderer rh(ctx_, half, 160, 120, 1);
   EXPECT_EQ(rh.render(half.desc.camera, nullptr, opt).leaves_drawn, 2 * prune::leaf_prefix(0.5f, uint32_t(m.leaves.size())));

@@ -13,64 +13,33 @@
 #include "engine/scene/scene.h"
 #include "generators/asset/asset_io.h"
 #include "generators/species/registry.h"
+#include "tests/common/test_files.h"
+#include "tests/gpu/gpu_scenes.h"
 #include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
-
 class SceneGpuTest : public ValidatedGpuTest {};
 
+// The common test scene on coarser ground, its preset baked cheaply (one small view).
 std::string scene_text(const std::string& extra) {
-  return R"(
-[render]
-width = 160
-height = 120
-samples = 1
-[camera]
-position = [0, 6, -24]
-target = [0, 5, 0]
-fov = 50
-[terrain]
-size = 200
-resolution = 16
-height = 1.0
-seed = 3
-[bake]
-views = 1
-resolution = 32
-[[species]]
-preset = "species/broadleaf.toml"
-seed = 11
-)" + extra;
+  return SceneText{.terrain_resolution = 16, .extra = "[bake]\nviews = 1\nresolution = 32\n" + extra}.str();
 }
-
-TreeModel broadleaf() { return generate_from_species(kSource + "/scenes/species/broadleaf.toml", GenerateOptions{11}); }
 
 // A scene of `count` copies of one model on flat ground, built without species files.
 Scene model_scene(const TreeModel& model, uint32_t count, float radius) {
-  Scene s;
-  s.desc = parse_scene_text(scene_text(""), "test.toml", kSource + "/scenes");
-  s.desc.species.resize(1);
-  s.desc.terrain.height = 0.0f;
-  s.desc.placement.count = count;
-  s.desc.placement.seed = 21;
-  s.desc.placement.min_spacing = 1.0f;
-  s.desc.placement.radius = radius;
-  s.terrain = make_terrain(s.desc.terrain);
-  s.models.push_back(model);
-  s.instances = place_trees(s.desc, s.terrain);
-  return s;
-}
-
-fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("forest_gpu_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  SceneDesc desc = parse_scene(scene_text(""));
+  desc.species.resize(1);
+  desc.terrain.height = 0.0f;
+  desc.placement.count = count;
+  desc.placement.seed = 21;
+  desc.placement.min_spacing = 1.0f;
+  desc.placement.radius = radius;
+  return scene_of(std::move(desc), {model});
 }
 
 }  // namespace
@@ -108,16 +77,16 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
 }
 
 TEST_F(SceneGpuTest, SpeciesCacheSecondLoadHitsAndRendersIdentically) {
-  fs::path cache = temp_dir("species_cache");
-  SceneDesc desc = parse_scene_text(scene_text("[[tree]]\nspecies = 0\nx = 0\nz = 0\n"), "test.toml", kSource + "/scenes");
-  desc.prune_mode = PRUNE_OPT;  // uses the baked tables
+  fs::path cache = fresh_temp_dir("forest_gpu", "species_cache");
+  SceneDesc desc = parse_scene(scene_text("[[tree]]\nspecies = 0\nx = 0\nz = 0\n"));
+  desc.prune_mode = PruneMode::opt;  // uses the baked tables
   SpeciesCacheCounts first_counts, second_counts;
   SceneBuildOptions o;
   o.species = cached_species_source({cache, &ctx_, {}}, &first_counts);
   Scene first = build_scene(desc, o);
   EXPECT_EQ(first_counts.misses, 1u);
   EXPECT_EQ(first_counts.hits, 0u);
-  ASSERT_TRUE(first.models[0].meta.value("baked", false)) << "a preset from the cache must be baked";
+  ASSERT_TRUE(first.models[0].bake.baked()) << "a preset from the cache must be baked";
   std::vector<fs::path> files;
   for (auto& e : fs::directory_iterator(cache)) files.push_back(e.path());
   ASSERT_EQ(files.size(), 1u) << "exactly one cached asset, no temporary file left";
@@ -159,8 +128,8 @@ TEST_F(SceneGpuTest, OptMatchesCookQualityWithFewerLeaves) {
   s.desc.camera.target = glm::vec3(0.0f, 4.0f, 0.0f);
   Renderer r(ctx_, s, 160, 120, 1);
   FrameSettings full, cook, opt;
-  cook.prune_mode = PRUNE_COOK;
-  opt.prune_mode = PRUNE_OPT;
+  cook.prune_mode = PruneMode::cook;
+  opt.prune_mode = PruneMode::opt;
   r.render_reference(s.desc.camera, full);
   PrResult q_cook = r.compare_with_reference(s.desc.camera, cook);
   PrResult q_opt = r.compare_with_reference(s.desc.camera, opt);

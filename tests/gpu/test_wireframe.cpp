@@ -4,12 +4,15 @@
 
 #include "engine/render/renderer.h"
 #include "engine/scene/scene.h"
+#include "tests/gpu/gpu_scenes.h"
+#include "tests/gpu/validated_gpu_test.h"
 
 using namespace forest;
+using namespace forest::test;
 
 namespace {
 
-const std::string kSource = FOREST_SOURCE_DIR;
+class GpuWireframe : public ValidatedGpuTest {};
 
 bool is_sky(const uint8_t* p) { return p[2] > p[0] && p[2] >= p[1] && p[2] > 120; }
 
@@ -22,51 +25,31 @@ size_t sky_pixels_in_lower_half(const FrameImage& img) {
 
 }  // namespace
 
-TEST(GpuWireframe, EdgesOnlyShowSkyThroughTerrainWithSameCulling) {
-  vk::Context ctx;
-  vk::ContextOptions options;
-  options.validation = true;
-  vk::create_context(ctx, options);
-  if (!ctx.fill_mode_non_solid) {
-    vk::destroy_context(ctx);
-    GTEST_SKIP() << "device lacks fillModeNonSolid";
-  }
-  {
-    SceneDesc desc = parse_scene_text(R"(
-[render]
-width = 128
-height = 96
-samples = 1
-[camera]
-position = [0, 6, -24]
-target = [0, 4, 0]
-[terrain]
-size = 200
-resolution = 24
-height = 1.0
-[[species]]
-preset = "species/fig2_1.toml"
-[[tree]]
-species = 0
-x = 0
-z = 0
-)",
-                                      "wire.toml", kSource + "/scenes");
-    Scene scene = build_scene(desc);
-    Renderer renderer(ctx, scene, desc.width, desc.height, desc.samples);
-    ASSERT_TRUE(renderer.has_wireframe());
-    FrameImage filled, wire;
-    FrameSettings settings = scene_frame_settings(desc);
-    FrameStats a = renderer.render(desc.camera, &filled, settings);
-    settings.wireframe = true;
-    FrameStats b = renderer.render(desc.camera, &wire, settings);
-    EXPECT_EQ(a.branch_draws, b.branch_draws);
-    EXPECT_EQ(a.leaves_drawn, b.leaves_drawn);
-    const size_t lower = size_t(desc.width) * (desc.height / 2 - 8);
-    EXPECT_LT(sky_pixels_in_lower_half(filled), lower / 50);      // solid ground
-    EXPECT_GT(sky_pixels_in_lower_half(wire), lower / 2);         // mostly sky between edges
-    EXPECT_LT(sky_pixels_in_lower_half(wire), lower - lower / 50);  // but the edges are drawn
-  }
-  vk::destroy_context(ctx);
-  EXPECT_EQ(ctx.validation_messages.load(), 0u) << ctx.last_validation_message;
+TEST_F(GpuWireframe, EdgesOnlyShowSkyThroughTerrainWithSameCulling) {
+  if (!ctx_.fill_mode_non_solid) GTEST_SKIP() << "device lacks fillModeNonSolid";
+  SceneDesc desc = parse_scene(SceneText{.width = 128,
+                                         .height = 96,
+                                         .target = {0.0f, 4.0f, 0.0f},
+                                         .fov = std::nullopt,
+                                         .terrain_resolution = 24,
+                                         .terrain_seed = std::nullopt,
+                                         .species = "fig2_1",
+                                         .species_seed = std::nullopt,
+                                         .extra = "[[tree]]\nspecies = 0\nx = 0\nz = 0\n"}
+                                   .str(),
+                               "wire.toml");
+  Scene scene = build_scene(desc);
+  Renderer renderer(ctx_, scene, desc.width, desc.height, desc.samples);
+  ASSERT_TRUE(renderer.has_wireframe());
+  FrameImage filled, wire;
+  FrameSettings settings = scene_frame_settings(desc);
+  FrameStats a = renderer.render(desc.camera, &filled, settings);
+  settings.wireframe = true;
+  FrameStats b = renderer.render(desc.camera, &wire, settings);
+  EXPECT_EQ(a.branch_draws, b.branch_draws);
+  EXPECT_EQ(a.leaves_drawn, b.leaves_drawn);
+  const size_t lower = size_t(desc.width) * (desc.height / 2 - 8);
+  EXPECT_LT(sky_pixels_in_lower_half(filled), lower / 50);        // solid ground
+  EXPECT_GT(sky_pixels_in_lower_half(wire), lower / 2);           // mostly sky between edges
+  EXPECT_LT(sky_pixels_in_lower_half(wire), lower - lower / 50);  // but the edges are drawn
 }

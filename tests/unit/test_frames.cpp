@@ -5,20 +5,14 @@
 
 #include "generators/mesh/bspline.h"
 #include "generators/mesh/frames.h"
+#include "tests/unit/frame_checks.h"
 
 using namespace forest;
 
 namespace {
 
-void expect_orthonormal(const Frame& f) {
-  EXPECT_NEAR(glm::length(f.tangent), 1.0f, 1e-5f);
-  EXPECT_NEAR(glm::length(f.normal), 1.0f, 1e-5f);
-  EXPECT_NEAR(glm::length(f.binormal), 1.0f, 1e-5f);
-  EXPECT_NEAR(glm::dot(f.tangent, f.normal), 0.0f, 1e-5f);
-  EXPECT_NEAR(glm::dot(f.tangent, f.binormal), 0.0f, 1e-5f);
-  EXPECT_NEAR(glm::dot(f.normal, f.binormal), 0.0f, 1e-5f);
-  EXPECT_NEAR(glm::length(glm::cross(f.tangent, f.normal) - f.binormal), 0.0f, 1e-5f);  // right-handed
-}
+// Unit, perpendicular and right-handed: binormal = tangent × normal.
+void expect_orthonormal(const Frame& f) { test::expect_right_handed_orthonormal(f.tangent, f.normal, f.binormal); }
 
 // The twist between consecutive frames: the angle between the next normal and the previous
 // normal carried over by the minimal rotation (0 for a rotation-minimizing frame).

@@ -55,23 +55,23 @@ std::vector<LeafPlacement> crown(size_t n, uint64_t seed) {
   return leaves;
 }
 
+// Calls fn(a, b, c) with the corners of every triangle, in double precision.
+template <class Fn>
+void for_each_triangle(const Mesh& m, Fn&& fn) {
+  for (size_t t = 0; t < m.indices.size(); t += 3)
+    fn(glm::dvec3(m.vertices[m.indices[t]].position), glm::dvec3(m.vertices[m.indices[t + 1]].position),
+       glm::dvec3(m.vertices[m.indices[t + 2]].position));
+}
+
 double signed_volume(const Mesh& m) {
   double v = 0.0;
-  for (size_t t = 0; t < m.indices.size(); t += 3) {
-    glm::dvec3 a(m.vertices[m.indices[t]].position), b(m.vertices[m.indices[t + 1]].position),
-        c(m.vertices[m.indices[t + 2]].position);
-    v += glm::dot(a, glm::cross(b, c)) / 6.0;
-  }
+  for_each_triangle(m, [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { v += glm::dot(a, glm::cross(b, c)) / 6.0; });
   return v;
 }
 
 double area(const Mesh& m) {
   double s = 0.0;
-  for (size_t t = 0; t < m.indices.size(); t += 3) {
-    glm::dvec3 a(m.vertices[m.indices[t]].position), b(m.vertices[m.indices[t + 1]].position),
-        c(m.vertices[m.indices[t + 2]].position);
-    s += 0.5 * glm::length(glm::cross(b - a, c - a));
-  }
+  for_each_triangle(m, [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { s += 0.5 * glm::length(glm::cross(b - a, c - a)); });
   return s;
 }
 
@@ -103,20 +103,18 @@ bool inside_mesh(const Mesh& m, glm::dvec3 p) {
   int votes = 0;
   for (const glm::dvec3& d : dirs) {
     int hits = 0;
-    for (size_t t = 0; t < m.indices.size(); t += 3) {
-      glm::dvec3 a(m.vertices[m.indices[t]].position), b(m.vertices[m.indices[t + 1]].position),
-          c(m.vertices[m.indices[t + 2]].position);
+    for_each_triangle(m, [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
       glm::dvec3 e1 = b - a, e2 = c - a, h = glm::cross(d, e2);
       double det = glm::dot(e1, h);
-      if (std::abs(det) < 1e-18) continue;
+      if (std::abs(det) < 1e-18) return;
       glm::dvec3 s = p - a;
       double u = glm::dot(s, h) / det;
-      if (u < 0.0 || u > 1.0) continue;
+      if (u < 0.0 || u > 1.0) return;
       glm::dvec3 q = glm::cross(s, e1);
       double v = glm::dot(d, q) / det;
-      if (v < 0.0 || u + v > 1.0) continue;
+      if (v < 0.0 || u + v > 1.0) return;
       if (glm::dot(e2, q) / det > 0.0) ++hits;
-    }
+    });
     votes += hits & 1;
   }
   return votes >= 2;
@@ -326,11 +324,12 @@ TEST(Hull, AttachStoresMeshAndSamples) {
   Hull hull = build_hull(model.leaves, plant_height(model));
   attach_hull(model, hull);
   EXPECT_EQ(model.hull.indices, hull.mesh.indices);
-  ASSERT_TRUE(model.meta["hull_samples"].is_array());
-  ASSERT_EQ(model.meta["hull_samples"].size(), hull.samples.size());
-  EXPECT_FLOAT_EQ(model.meta["hull_samples"][5][1].get<float>(), hull.samples[5].y);
-  EXPECT_EQ(model.meta["hull_sample_normals"].size(), hull.samples.size());
-  EXPECT_FLOAT_EQ(model.meta["hull_radius"].get<float>(), hull.radius);
+  ASSERT_TRUE(model.bake.hull.has_value());
+  EXPECT_EQ(model.bake.hull->points, hull.samples);
+  EXPECT_EQ(model.bake.hull->normals, hull.sample_normals);
+  EXPECT_EQ(model.bake.hull->iso, hull.iso);
+  EXPECT_EQ(model.bake.hull->radius, hull.radius);
+  EXPECT_FALSE(model.bake.baked()) << "a hull alone is not a bake";
 }
 
 TEST(Hull, NearestOnMeshMatchesBruteForce) {

@@ -4,32 +4,20 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <OpenImageIO/imageio.h>
 
 #include "generators/core/input_error.h"
 #include "generators/methods/common/image_inputs.h"
 #include "generators/methods/common/image_synthetic.h"
+#include "tests/common/test_files.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("forest_image_inputs_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+fs::path temp_dir(const std::string& name) { return test::fresh_temp_dir("forest_image_inputs", name); }
 
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
@@ -94,7 +82,7 @@ TEST(ImageInputs, MaskRoundTripAndDeterministicBytes) {
   Mask m = disc_mask(64, 20);
   write_mask(m, d / "a.png");
   write_mask(m, d / "b.png");
-  EXPECT_EQ(read_bytes(d / "a.png"), read_bytes(d / "b.png"));
+  EXPECT_EQ(test::slurp(d / "a.png"), test::slurp(d / "b.png"));
   EXPECT_LT(fs::file_size(d / "a.png"), 4096u);
   Mask back = load_mask(d / "a.png");
   ASSERT_EQ(back.width, 64);

@@ -11,6 +11,7 @@
 #include "generators/tree/leaves.h"
 #include "generators/methods/lsystem/lsystem.h"
 #include "generators/mesh/mesher.h"
+#include "tests/unit/frame_checks.h"
 
 using namespace forest;
 
@@ -44,13 +45,7 @@ TEST(Leaves, LeafFrameIsOrthonormalWithNormalPerpendicularToTheAxis) {
     for (glm::vec3 bud : {glm::vec3(1, 5, 0), glm::vec3(-2, 1, 3), glm::vec3(0, 9, 0)}) {
       glm::vec3 z(0, 3, 0);
       LeafFrame f = leaf_frame(bud, axis, z);
-      EXPECT_NEAR(glm::length(f.axis), 1.0f, 1e-5f);
-      EXPECT_NEAR(glm::length(f.normal), 1.0f, 1e-5f);
-      EXPECT_NEAR(glm::length(f.side), 1.0f, 1e-5f);
-      EXPECT_NEAR(glm::dot(f.normal, f.axis), 0.0f, 1e-5f);
-      EXPECT_NEAR(glm::dot(f.side, f.axis), 0.0f, 1e-5f);
-      EXPECT_NEAR(glm::dot(f.side, f.normal), 0.0f, 1e-5f);
-      EXPECT_NEAR(glm::length(f.side - glm::cross(f.normal, f.axis)), 0.0f, 1e-5f);  // s = n × a
+      test::expect_right_handed_orthonormal(f.normal, f.axis, f.side);  // s = n × a
       // n is n_opt (from z to the bud) with its axial part removed.
       glm::vec3 n_opt = glm::normalize(bud - z);
       glm::vec3 expect = n_opt - glm::dot(n_opt, f.axis) * f.axis;

@@ -2,6 +2,7 @@
 // the per-model sample points, and the scene-file switch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/occlusion/occlusion_samples.h"
@@ -39,7 +40,77 @@ TEST(OcclusionFactor, RisesAtOnceFallsSmoothlyAndHoldsInsideTheBand) {
   }
 }
 
+namespace {
+
+// A crown whose leaves line a sphere (radius `radius` about `centre`, leaf centres on it,
+// Fibonacci spiral): its metaball hull is a thick shell with a closed inner surface around
+// the empty middle, so the baked samples fall on both surfaces.
+TreeModel hollow_crown(glm::vec3 centre, float radius, uint32_t leaves) {
+  TreeModel m;
+  const float golden = 2.39996323f;
+  const float scale = 0.02f;
+  for (uint32_t i = 0; i < leaves; ++i) {
+    float y = 1.0f - 2.0f * (float(i) + 0.5f) / float(leaves);
+    float ring = std::sqrt(std::max(0.0f, 1.0f - y * y));
+    glm::vec3 d(ring * std::cos(golden * float(i)), y, ring * std::sin(golden * float(i)));
+    LeafPlacement l;
+    l.scale = scale;
+    l.position = centre + radius * d - glm::vec3(0.0f, 0.5f * scale, 0.0f);  // card centre on the sphere
+    m.leaves.push_back(l);
+  }
+  m.bounding_sphere = glm::vec4(centre, radius + 0.2f * radius);
+  return m;
+}
+
+}  // namespace
+
 TEST(OcclusionSamples, BakedHullSamplesOnTheOuterShell) {
+  {
+    // A hollow hull: two closed surfaces, the outer one seen from outside and an inner one
+    // facing the empty middle. Samples on the inner surface are hidden by the tree's own
+    // foliage from every side, so occlusion_samples must drop them (its outward ray test)
+    // and keep the ones on the outer surface.
+    const glm::vec3 c(0.0f, 3.0f, 0.0f);
+    const float R = 1.0f;
+    TreeModel m = hollow_crown(c, R, 2000);
+    HullParams params;
+    params.sample_count = 128;
+    Hull hull = build_hull(m.leaves, 3.0f, params);  // r = 0.15: a shell of about 0.87 R .. 1.13 R
+    ASSERT_FALSE(hull.mesh.indices.empty());
+    ASSERT_EQ(hull.samples.size(), 128u);
+    // The field is 0 at the centre: the hull really is hollow there.
+    size_t inner = 0, outer = 0;
+    for (const glm::vec3& p : hull.samples) {
+      float d = glm::distance(p, c);
+      ASSERT_TRUE(d < 0.95f * R || d > 1.05f * R) << "sample between the shells at " << d;
+      (d < R ? inner : outer) += 1;
+    }
+    ASSERT_GE(inner, 16u) << "the bake put too few samples on the inner surface to test anything";
+    ASSERT_GE(outer, 32u);
+    attach_hull(m, hull);
+    OcclusionSamples s = occlusion_samples(m);
+    EXPECT_TRUE(s.from_hull);
+    size_t kept_outer = 0;
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const gpu::HullSample& h : s.samples) {
+      glm::vec3 p(h.position);
+      float d = glm::distance(p, c);
+      EXPECT_GT(d, R) << "kept a sample on the inner shell at (" << p.x << ", " << p.y << ", " << p.z << ")";
+      if (d > R) ++kept_outer;
+      // Its normal points away from the centre: outward on the outer shell.
+      EXPECT_GT(glm::dot(glm::vec3(h.normal), p - c), 0.0f);
+      lo = glm::min(lo, p - c), hi = glm::max(hi, p - c);
+    }
+    EXPECT_LE(s.samples.size(), outer) << inner << " inner, " << outer << " outer baked samples";
+    // The outer shell is a smooth convex surface: (nearly) all of its samples stay...
+    EXPECT_GE(kept_outer * 10, outer * 9) << kept_outer << " of " << outer << " outer samples kept";
+    // ...and they cover it on every side.
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_GT(hi[axis], 0.9f * R) << "axis " << axis;
+      EXPECT_LT(lo[axis], -0.9f * R) << "axis " << axis;
+    }
+  }
+
   TreeModel m = generate_from_species(std::string(FOREST_SOURCE_DIR) + "/scenes/species/broadleaf.toml", GenerateOptions{11});
   Hull hull = build_hull(m.leaves, plant_height(m));
   attach_hull(m, hull);
@@ -56,17 +127,13 @@ TEST(OcclusionSamples, BakedHullSamplesOnTheOuterShell) {
     for (const glm::vec3& p : hull.samples) found |= glm::distance(p, glm::vec3(h.position)) < 1e-5f;
     EXPECT_TRUE(found);
   }
-  // Malformed samples in an asset are input errors naming the key.
-  m.meta["hull_sample_normals"].erase(0);
-  EXPECT_THROW(occlusion_samples(m), InputError);
-  m.meta["hull_samples"] = nlohmann::json::array({{0.0, "x", 1.0}});
-  m.meta["hull_sample_normals"] = nlohmann::json::array({{0.0, 1.0, 0.0}});
-  try {
-    occlusion_samples(m);
-    ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("hull_samples[0]"), std::string::npos) << e.what();
-  }
+  // Malformed samples in an asset are refused when it is read (test_bake_io.cpp); samples a
+  // program got wrong are refused here rather than read out of bounds.
+  m.bake.hull->normals.pop_back();
+  EXPECT_THROW(occlusion_samples(m), std::invalid_argument);
+  m.bake.hull->points = {{0.0f, 1.0f, 0.0f}};
+  m.bake.hull->normals = {{0.0f, 0.0f, 0.0f}};
+  EXPECT_THROW(occlusion_samples(m), std::invalid_argument);
 }
 
 TEST(OcclusionSamples, UnbakedModelsUseTheCrownEllipsoid) {

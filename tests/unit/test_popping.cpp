@@ -3,17 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "engine/tools/report/popping.h"
+#include "tests/unit/blank_image.h"
 
 using namespace forest;
 
 namespace {
 
-FrameImage blank(uint32_t w, uint32_t h) {
-  FrameImage img;
-  img.width = w, img.height = h;
-  img.rgba.assign(size_t(w) * h * 4, 0);
-  return img;
-}
+FrameImage blank(uint32_t w, uint32_t h) { return test::blank_image(w, h, 0); }
 
 void set(FrameImage& img, uint32_t x, uint32_t y, uint8_t value) {
   for (int c = 0; c < 3; ++c) img.rgba[(size_t(y) * img.width + x) * 4 + c] = value;

@@ -3,18 +3,13 @@
 
 #include "engine/tools/report/pr_image.h"
 #include "generators/core/input_error.h"
+#include "tests/unit/blank_image.h"
 
 using namespace forest;
 
 namespace {
 
-FrameImage blank(uint32_t w, uint32_t h) {
-  FrameImage img;
-  img.width = w, img.height = h;
-  img.rgba.assign(size_t(w) * h * 4, 0);
-  for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
-  return img;
-}
+FrameImage blank(uint32_t w, uint32_t h) { return test::blank_image(w, h, 255); }
 
 void fill(FrameImage& img, uint32_t x0, uint32_t x1, uint8_t value) {
   for (uint32_t y = 0; y < img.height; ++y)

@@ -245,7 +245,7 @@ TEST(Priority, ReorderAndApply) {
 
   TreeModel applied = c.model;
   apply_priority(applied, hull, Priority::orientation, 2);
-  EXPECT_EQ(applied.meta["priority"], "orientation");
+  EXPECT_EQ(applied.bake.priority, "orientation");
   for (size_t r = 0; r < order.size(); ++r) EXPECT_EQ(applied.leaves[r].position, m.leaves[r].position);
 }
 

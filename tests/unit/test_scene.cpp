@@ -6,25 +6,10 @@
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
 #include "generators/core/input_error.h"
+#include "tests/unit/scene_parse.h"
 
 using namespace forest;
-
-namespace {
-
-const std::string kScenes = std::string(FOREST_SOURCE_DIR) + "/scenes";
-
-SceneDesc parse(const std::string& text) { return parse_scene_text(text, "s.toml", kScenes); }
-
-std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
+using namespace forest::test;
 
 TEST(SceneFile, DefaultsAndValues) {
   SceneDesc s = parse("[render]\nwidth = 320\nheight = 200\n[camera]\nposition = [1, 2, 3]\nfov = 40\n");

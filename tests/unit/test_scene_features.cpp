@@ -14,54 +14,28 @@
 #include "engine/scene/scene.h"
 #include "engine/tools/bake/species_cache.h"
 #include "generators/core/input_error.h"
+#include "tests/common/test_files.h"
+#include "tests/unit/scene_parse.h"
 
 using namespace forest;
+using namespace forest::test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kScenes = std::string(FOREST_SOURCE_DIR) + "/scenes";
-
-SceneDesc parse(const std::string& text) { return parse_scene_text(text, "s.toml", kScenes); }
-
-std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+// A [[path.key]] table: four lines, `extra` keys after them.
+std::string path_key(const std::string& time, const std::string& position, const std::string& target,
+                     const std::string& extra = "") {
+  return "[[path.key]]\ntime = " + time + "\nposition = " + position + "\ntarget = " + target + "\n" + extra;
 }
 
-const char* kPath = R"(
-[[path]]
-name = "walk"
-fps = 10
-[[path.key]]
-time = 0
-position = [0, 2, 0]
-target = [0, 2, 10]
-[[path.key]]
-time = 2
-position = [10, 2, 0]
-target = [10, 2, 10]
-fov = 70
-[[path.key]]
-time = 3
-position = [10, 4, 10]
-target = [20, 4, 10]
-[[path.key]]
-time = 5
-position = [0, 2, 30]
-target = [0, 2, 40]
-)";
+const std::string kPath = "[[path]]\nname = \"walk\"\nfps = 10\n" +
+                          path_key("0", "[0, 2, 0]", "[0, 2, 10]") +
+                          path_key("2", "[10, 2, 0]", "[10, 2, 10]", "fov = 70\n") +
+                          path_key("3", "[10, 4, 10]", "[20, 4, 10]") +
+                          path_key("5", "[0, 2, 30]", "[0, 2, 40]");
 
-fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("forest_unit_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return fresh_temp_dir("forest_unit", name); }
 
 }  // namespace
 
@@ -114,43 +88,25 @@ TEST(CameraPath, CentripetalCatmullRomOnALineIsTheLine) {
 }
 
 TEST(CameraPath, LoopWrapsTime) {
-  SceneDesc s = parse(R"(
-[[path]]
-name = "orbit"
-loop = true
-[[path.key]]
-time = 0
-position = [10, 5, 0]
-target = [0, 0, 0]
-[[path.key]]
-time = 1
-position = [0, 5, 10]
-target = [0, 0, 0]
-[[path.key]]
-time = 2
-position = [-10, 5, 0]
-target = [0, 0, 0]
-[[path.key]]
-time = 3
-position = [10, 5, 0]
-target = [0, 0, 0]
-)");
+  SceneDesc s = parse("[[path]]\nname = \"orbit\"\nloop = true\n" + path_key("0", "[10, 5, 0]", "[0, 0, 0]") +
+                      path_key("1", "[0, 5, 10]", "[0, 0, 0]") + path_key("2", "[-10, 5, 0]", "[0, 0, 0]") +
+                      path_key("3", "[10, 5, 0]", "[0, 0, 0]"));
   const CameraPath& p = s.paths[0];
   for (float t : {0.3f, 1.7f, 2.9f})
     EXPECT_NEAR(glm::distance(camera_at(p, t, s.camera).position, camera_at(p, t + 3.0f, s.camera).position), 0.0f, 1e-3f);
 }
 
 TEST(CameraPath, BadPathsNameFileLineAndKey) {
-  EXPECT_NE(error_of("[[path]]\nname = \"a\"\n[[path.key]]\ntime = 0\nposition = [0,0,0]\ntarget = [1,0,0]\n")
+  EXPECT_NE(error_of("[[path]]\nname = \"a\"\n" + path_key("0", "[0,0,0]", "[1,0,0]"))
                 .find("path[0].key: a path needs at least 2 keys ([[path.key]] with time, position, target)"),
             std::string::npos);
-  std::string two = "[[path.key]]\ntime = 1\nposition = [0,0,0]\ntarget = [1,0,0]\n[[path.key]]\ntime = 1\nposition = [0,0,1]\ntarget = [1,0,0]\n";
+  std::string two = path_key("1", "[0,0,0]", "[1,0,0]") + path_key("1", "[0,0,1]", "[1,0,0]");
   EXPECT_NE(error_of("[[path]]\nname = \"a\"\n" + two).find("s.toml:8: path[0].key[1].time: must be greater"), std::string::npos)
       << error_of("[[path]]\nname = \"a\"\n" + two);
   EXPECT_NE(error_of("[[path]]\nname = \"a\"\nspeed = 3\n").find("path[0].speed: unknown key"), std::string::npos);
-  std::string ok = "[[path.key]]\ntime = 0\nposition = [0,0,0]\ntarget = [1,0,0]\n[[path.key]]\ntime = 1\nposition = [0,0,1]\ntarget = [1,0,0]\n";
+  std::string ok = path_key("0", "[0,0,0]", "[1,0,0]") + path_key("1", "[0,0,1]", "[1,0,0]");
   EXPECT_NE(error_of("[[path]]\nname = \"a\"\n" + ok + "[[path]]\nname = \"a\"\n" + ok).find("already defined"), std::string::npos);
-  EXPECT_NE(error_of("[[path]]\nname = \"a\"\n[[path.key]]\ntime = nan\nposition = [0,0,0]\ntarget = [1,0,0]\n" + ok)
+  EXPECT_NE(error_of("[[path]]\nname = \"a\"\n" + path_key("nan", "[0,0,0]", "[1,0,0]") + ok)
                 .find("s.toml:4: path[0].key[0].time: must be a finite number"),
             std::string::npos);
 }

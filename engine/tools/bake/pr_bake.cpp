@@ -106,94 +106,123 @@ struct ScaleSearch {
   }
 };
 
-}  // namespace
+using clock = std::chrono::steady_clock;
 
-PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const PrBakeOptions& options) {
-  using clock = std::chrono::steady_clock;
-  Scene scene = make_model_scene(model, options.resolution, 1);
-  Renderer renderer(ctx, scene, options.resolution, options.resolution, 1);
-  PrBakeStats stats;
+double seconds_since(clock::time_point t0) { return std::chrono::duration<double>(clock::now() - t0).count(); }
 
+// Azimuths around the model, alternating two elevations.
+std::vector<CameraDesc> orbit_views(const TreeModel& model, uint32_t views) {
   std::vector<CameraDesc> cams;
-  for (uint32_t v = 0; v < options.views; ++v) {
-    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(options.views);
+  for (uint32_t v = 0; v < views; ++v) {
+    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(views);
     float elevation = glm::radians(v % 2 ? 35.0f : 10.0f);
     cams.push_back(orbit_camera(model.bounding_sphere, azimuth, elevation, 30.0f));
   }
-  if (options.batched) {
-    auto t0 = clock::now();
-    renderer.set_coverage_views(cams);
-    stats.reference_seconds += std::chrono::duration<double>(clock::now() - t0).count();
-    ++stats.submits;
-  }
+  return cams;
+}
 
-  // PR of (λ, s) points summed over the views, measured once each.
+// PR of (λ, s) points summed over the views, each point measured once, and what it cost.
+struct PrMeter {
+  Renderer& renderer;
+  const PrBakeOptions& options;
+  const std::vector<CameraDesc>& cams;
   std::map<Point, PrResult> sums;
-  size_t expected = 0, measured = 0;
-  auto measure = [&](std::vector<Point> points) {
-    std::sort(points.begin(), points.end());
-    points.erase(std::unique(points.begin(), points.end()), points.end());
-    std::erase_if(points, [&](const Point& p) { return sums.count(p) > 0; });
-    if (points.empty()) return;
-    if (options.batched) {
-      std::vector<CoverageJob> jobs;
-      for (auto [l, s] : points)
-        for (uint32_t v = 0; v < options.views; ++v) jobs.push_back({v, l, s});
-      auto t0 = clock::now();
-      std::vector<PrResult> r = renderer.compare_coverage(jobs);
-      stats.compare_seconds += std::chrono::duration<double>(clock::now() - t0).count();
-      ++stats.submits;
-      for (size_t i = 0; i < jobs.size(); ++i) sums[{jobs[i].lambda, jobs[i].scale}] += r[i];
-    } else {
-      for (uint32_t v = 0; v < options.views; ++v) {
-        auto t0 = clock::now();
-        FrameSettings full;
-        full.prune_mode = PRUNE_FULL;
-        renderer.render_reference(cams[v], full);
-        auto t1 = clock::now();
-        for (auto [l, s] : points) {
-          FrameSettings test;
-          test.prune_mode = PRUNE_FIXED;
-          test.fixed_lambda = l;
-          test.fixed_scale = s;
-          sums[{l, s}] += renderer.compare_with_reference(cams[v], test);
-        }
-        stats.reference_seconds += std::chrono::duration<double>(t1 - t0).count();
-        stats.compare_seconds += std::chrono::duration<double>(clock::now() - t1).count();
-        stats.submits += 1 + uint32_t(points.size());
-      }
-    }
-    stats.renders += uint32_t(points.size()) * options.views;
-    measured += points.size();
-    if (options.progress) options.progress(std::min(0.99, double(measured) / double(std::max(expected, measured + 1))));
-  };
+  PrBakeStats stats;
+  size_t expected = 0, measured = 0;  // points, for the progress fraction
+};
 
-  std::vector<float> lambdas(S_SAMPLES);
-  for (uint32_t i = 0; i < S_SAMPLES; ++i) lambdas[i] = float(i) / float(S_SAMPLES - 1);
-  std::vector<float> cook(D_SAMPLES);
-  std::vector<Point> first;  // Cook's points, and the start of every s search (or the whole grid)
-  for (uint32_t j = 0; j < D_SAMPLES; ++j) {
-    cook[j] = prune::lambda_cook(prune::d_sample(j));
-    if (cook[j] > 0.0f) first.push_back({cook[j], 1.0f / cook[j]});
+// All views of all points in one submit (Renderer::compare_coverage).
+void measure_batched(PrMeter& m, const std::vector<Point>& points) {
+  std::vector<CoverageJob> jobs;
+  for (auto [l, s] : points)
+    for (uint32_t v = 0; v < m.options.views; ++v) jobs.push_back({v, l, s});
+  auto t0 = clock::now();
+  std::vector<PrResult> r = m.renderer.compare_coverage(jobs);
+  m.stats.compare_seconds += seconds_since(t0);
+  ++m.stats.submits;
+  for (size_t i = 0; i < jobs.size(); ++i) m.sums[{jobs[i].lambda, jobs[i].scale}] += r[i];
+}
+
+// The reference path: per view a full-detail render, then one submit per pruned render.
+void measure_view_by_view(PrMeter& m, const std::vector<Point>& points) {
+  for (uint32_t v = 0; v < m.options.views; ++v) {
+    auto t0 = clock::now();
+    FrameSettings full;
+    full.prune_mode = PruneMode::full;
+    m.renderer.render_reference(m.cams[v], full);
+    auto t1 = clock::now();
+    for (auto [l, s] : points) {
+      FrameSettings test;
+      test.prune_mode = PruneMode::fixed;
+      test.fixed_lambda = l;
+      test.fixed_scale = s;
+      m.sums[{l, s}] += m.renderer.compare_with_reference(m.cams[v], test);
+    }
+    m.stats.reference_seconds += std::chrono::duration<double>(t1 - t0).count();
+    m.stats.compare_seconds += seconds_since(t1);
+    m.stats.submits += 1 + uint32_t(points.size());
   }
+}
+
+// Measures the points not measured yet (duplicates once).
+void measure(PrMeter& m, std::vector<Point> points) {
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::erase_if(points, [&](const Point& p) { return m.sums.count(p) > 0; });
+  if (points.empty()) return;
+  if (m.options.batched) measure_batched(m, points);
+  else measure_view_by_view(m, points);
+  m.stats.renders += uint32_t(points.size()) * m.options.views;
+  m.measured += points.size();
+  if (m.options.progress)
+    m.options.progress(std::min(0.99, double(m.measured) / double(std::max(m.expected, m.measured + 1))));
+}
+
+ScaleSearch start_search(float lambda, uint32_t candidates) {
+  ScaleSearch ss;
+  ss.lambda = lambda;
+  ss.s = scale_grid(ss.lambda, candidates);
+  ss.q.assign(ss.s.size(), std::nan(""));
+  ss.hi = int(ss.s.size()) - 1;
+  ss.m = int(std::find(ss.s.begin(), ss.s.end(), 1.0f / ss.lambda) - ss.s.begin());
+  return ss;
+}
+
+// The sample positions of the tables, the points measured first and one s search per λ > 0.
+struct SamplePlan {
+  std::vector<float> lambdas;  // S_SAMPLES
+  std::vector<float> cook;     // D_SAMPLES: λ_Cook(d_j)
+  std::vector<Point> first;    // Cook's points, and the start of every s search (or the whole grid)
   std::vector<ScaleSearch> searches;
-  for (uint32_t i = 1; i < S_SAMPLES; ++i) {
-    ScaleSearch ss;
-    ss.lambda = lambdas[i];
-    ss.s = scale_grid(ss.lambda, options.scale_candidates);
-    ss.q.assign(ss.s.size(), std::nan(""));
-    ss.hi = int(ss.s.size()) - 1;
-    ss.m = int(std::find(ss.s.begin(), ss.s.end(), 1.0f / ss.lambda) - ss.s.begin());
-    first.push_back({ss.lambda, 1.0f / ss.lambda});  // Cook's s = 1/λ is always measured (q_inverse)
-    if (!options.search_scale)
-      for (float s : ss.s) first.push_back({ss.lambda, s});
-    expected += options.search_scale ? 2 * size_t(std::ceil(std::log2(double(ss.s.size())))) : ss.s.size();
-    searches.push_back(std::move(ss));
+  size_t expected = 0;         // points measured in all, about (for progress)
+};
+
+SamplePlan plan_samples(const PrBakeOptions& options) {
+  SamplePlan plan;
+  plan.lambdas.resize(S_SAMPLES);
+  for (uint32_t i = 0; i < S_SAMPLES; ++i) plan.lambdas[i] = pr_lambda(i);  // the tables' sample positions
+  plan.cook.resize(D_SAMPLES);
+  for (uint32_t j = 0; j < D_SAMPLES; ++j) {
+    plan.cook[j] = pr_lambda_cook(j);
+    if (plan.cook[j] > 0.0f) plan.first.push_back({plan.cook[j], 1.0f / plan.cook[j]});
   }
-  expected += D_SAMPLES;
-  measure(first);
-  for (ScaleSearch& ss : searches) ss.q[size_t(ss.m)] = sums[{ss.lambda, ss.s[size_t(ss.m)]}].quality();
-  while (options.search_scale) {
+  for (uint32_t i = 1; i < S_SAMPLES; ++i) {
+    ScaleSearch ss = start_search(plan.lambdas[i], options.scale_candidates);
+    plan.first.push_back({ss.lambda, 1.0f / ss.lambda});  // Cook's s = 1/λ is always measured (q_inverse)
+    if (!options.search_scale)
+      for (float s : ss.s) plan.first.push_back({ss.lambda, s});
+    plan.expected += options.search_scale ? 2 * size_t(std::ceil(std::log2(double(ss.s.size())))) : ss.s.size();
+    plan.searches.push_back(std::move(ss));
+  }
+  plan.expected += D_SAMPLES;
+  return plan;
+}
+
+// Every search starts from Cook's s = 1/λ (measured with the first points); then all
+// searches' probes of a round are measured together until none asks for more.
+void run_scale_searches(PrMeter& m, std::vector<ScaleSearch>& searches) {
+  for (ScaleSearch& ss : searches) ss.q[size_t(ss.m)] = m.sums[{ss.lambda, ss.s[size_t(ss.m)]}].quality();
+  while (m.options.search_scale) {
     std::vector<Point> round;
     std::vector<std::vector<int>> probes;
     for (ScaleSearch& ss : searches) {
@@ -201,22 +230,18 @@ PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const 
       for (int p : probes.back()) round.push_back({ss.lambda, ss.s[size_t(p)]});
     }
     if (round.empty()) break;
-    measure(round);
+    measure(m, round);
     for (size_t k = 0; k < searches.size(); ++k) {
       ScaleSearch& ss = searches[k];
       if (probes[k].empty()) continue;
-      for (int p : probes[k]) ss.q[size_t(p)] = sums[{ss.lambda, ss.s[size_t(p)]}].quality();
+      for (int p : probes[k]) ss.q[size_t(p)] = m.sums[{ss.lambda, ss.s[size_t(p)]}].quality();
       ss.advance(probes[k]);
     }
   }
+}
 
-  PrMeasurement out;
-  out.stats = stats;
-  for (auto& [key, pr] : sums) out.samples.push_back({key.first, key.second, pr});
-  PrTables& t = out.tables;
-  t.views = int(options.views);
-  t.resolution = int(options.resolution);
-  t.lambda = lambdas;
+// s_opt(λ) (ties to the smaller s), q_opt and q_inverse from the measured points.
+void fill_scale_tables(PrTables& t, const std::map<Point, PrResult>& sums, const std::vector<float>& lambdas) {
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
@@ -238,18 +263,45 @@ PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const 
   t.s_opt[S_SAMPLES - 1] = 1.0f;
   t.q_opt[0] = 0.0f;
   t.q_inverse[0] = 0.0f;
+}
 
-  // λ_opt(d): the smallest λ whose optimal quality matches Cook's at λ_Cook(d) (Neubert 2012 §7.2.5).
-  t.d.resize(D_SAMPLES);
-  t.lambda_cook = cook;
+// λ_opt(d): the smallest λ whose optimal quality matches Cook's at λ_Cook(d) (Neubert 2012 §7.2.5).
+void fill_lambda_opt(PrTables& t, std::map<Point, PrResult>& sums, const std::vector<float>& cook) {
   t.lambda_opt.resize(D_SAMPLES);
   for (uint32_t j = 0; j < D_SAMPLES; ++j) {
-    t.d[j] = prune::d_sample(j);
     float lc = cook[j];
     t.lambda_opt[j] = lc <= 0.0f ? 0.0f : smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}].quality(), lc);
   }
   t.lambda_opt[0] = 1.0f;
   t.lambda_opt = non_increasing(t.lambda_opt);
+}
+
+}  // namespace
+
+PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const PrBakeOptions& options) {
+  Scene scene = make_model_scene(model, options.resolution, 1);
+  Renderer renderer(ctx, scene, options.resolution, options.resolution, 1);
+  std::vector<CameraDesc> cams = orbit_views(model, options.views);
+  PrMeter meter{renderer, options, cams};
+  if (options.batched) {  // the views' full-detail (and branch) coverage, once
+    auto t0 = clock::now();
+    renderer.set_coverage_views(cams);
+    meter.stats.reference_seconds += seconds_since(t0);
+    ++meter.stats.submits;
+  }
+  SamplePlan plan = plan_samples(options);
+  meter.expected = plan.expected;
+  measure(meter, plan.first);
+  run_scale_searches(meter, plan.searches);
+
+  PrMeasurement out;
+  out.stats = meter.stats;
+  for (auto& [key, pr] : meter.sums) out.samples.push_back({key.first, key.second, pr});
+  PrTables& t = out.tables;
+  t.views = int(options.views);
+  t.resolution = int(options.resolution);
+  fill_scale_tables(t, meter.sums, plan.lambdas);
+  fill_lambda_opt(t, meter.sums, plan.cook);
   if (options.progress) options.progress(1.0);
   return out;
 }

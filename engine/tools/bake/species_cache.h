@@ -1,6 +1,7 @@
 // Species cache: a species spec ([[species]] preset + seed) is generated and baked once,
-// then loaded from `<cache dir>/<key>.glb`. The key hashes everything the baked bytes depend
-// on: the preset file's text, the seed, the generator version and the bake settings.
+// then loaded from `<cache dir>/<preset stem>-<key>.glb`. The key hashes what the baked bytes
+// depend on: the preset file's text, the seed, the bake settings and kSpeciesCacheVersion
+// (bumped by hand whenever a generator or the bake changes its output).
 // Writes are atomic (temporary file + rename), so concurrent runs at worst bake twice.
 #pragma once
 #include <filesystem>

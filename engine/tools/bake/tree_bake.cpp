@@ -33,11 +33,10 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
     throw vk::VkFailure(std::to_string(ctx.validation_messages.load() - messages_before) +
                         " Vulkan validation message(s) during bake");
   pm.tables.priority = settings.priority;
-  model.meta["pr_tables"] = to_json(pm.tables);
-  nlohmann::json samples = nlohmann::json::array();  // the PR diagram behind the tables
-  for (const PrSample& ps : pm.samples) samples.push_back({ps.lambda, ps.scale, ps.pr.precision(), ps.pr.recall()});
-  model.meta["pr_samples"] = samples;
-  model.meta["baked"] = true;
+  model.bake.pr_tables = pm.tables;
+  model.bake.pr_samples.clear();  // the PR diagram behind the tables
+  for (const PrSample& ps : pm.samples)
+    model.bake.pr_samples.push_back({ps.lambda, ps.scale, ps.pr.precision(), ps.pr.recall()});
   TreeBakeResult r;
   r.measurement = std::move(pm);
   r.hull_seconds = std::chrono::duration<double>(t_hull - t0).count();

@@ -1,6 +1,6 @@
 // Bake a generated model for run-time pruning: metaball hull, priority-sorted leaves and
-// PR-measured s_opt / λ_opt tables (stored in model.meta). Used by `forest bake`,
-// `forest generate --bake` and the species cache.
+// PR-measured s_opt / λ_opt tables (stored in model.bake). Used by `forest bake` and the
+// species cache.
 #pragma once
 #include <cstdint>
 #include <functional>

@@ -111,13 +111,7 @@ Hull build_hull(const std::vector<LeafPlacement>& leaves, float height, const Hu
 
 void attach_hull(TreeModel& model, const Hull& hull) {
   model.hull = hull.mesh;
-  nlohmann::json pts = nlohmann::json::array(), nrm = nlohmann::json::array();
-  for (const glm::vec3& p : hull.samples) pts.push_back({p.x, p.y, p.z});
-  for (const glm::vec3& n : hull.sample_normals) nrm.push_back({n.x, n.y, n.z});
-  model.meta["hull_samples"] = std::move(pts);
-  model.meta["hull_sample_normals"] = std::move(nrm);
-  model.meta["hull_iso"] = hull.iso;
-  model.meta["hull_radius"] = hull.radius;
+  model.bake.hull = HullSamples{hull.samples, hull.sample_normals, hull.iso, hull.radius};
 }
 
 }  // namespace forest

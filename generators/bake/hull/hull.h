@@ -1,4 +1,4 @@
-// Metaball hull of a tree's foliage (Neubert 2012 §7.3.1, reference/pruning.md "Rendering
+// Metaball hull of a tree's foliage (Neubert 2012 §7.3.1 "Rendering
 // priority"): generators are the leaf-card centres, radius r = 5 % of the plant height, the
 // hull is the iso-surface F = a extracted by marching cubes, plus a few sample points on it
 // for the run-time occlusion test (Neubert 2012 §7.4).
@@ -46,8 +46,7 @@ float plant_height(const TreeModel& model);
 Hull build_hull(const std::vector<LeafPlacement>& leaves, float plant_height,
                 const HullParams& params = {});
 
-// model.hull = hull.mesh; meta["hull_samples"] = [[x, y, z], ...],
-// meta["hull_sample_normals"] likewise, meta["hull_iso"], meta["hull_radius"].
+// model.hull = hull.mesh; model.bake.hull = the samples, their normals, iso and radius.
 void attach_hull(TreeModel& model, const Hull& hull);
 
 }  // namespace forest

@@ -56,23 +56,6 @@ void require_hull(const TreeModel& model, const Hull& hull, Priority p) {
 
 }  // namespace
 
-std::string_view priority_name(Priority p) {
-  switch (p) {
-    case Priority::random: return "random";
-    case Priority::density: return "density";
-    case Priority::orientation: return "orientation";
-    case Priority::combined: return "combined";
-    case Priority::layered: return "layered";
-  }
-  return "random";
-}
-
-std::optional<Priority> parse_priority(std::string_view name) {
-  for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined, Priority::layered})
-    if (priority_name(p) == name) return p;
-  return std::nullopt;
-}
-
 LeafPriorityScores leaf_priority_scores(const TreeModel& model, const Hull& hull, uint64_t seed,
                                         const PriorityParams& params) {
   require_hull(model, hull, Priority::combined);
@@ -178,7 +161,7 @@ void reorder_leaves(TreeModel& model, std::span<const uint32_t> order) {
 void apply_priority(TreeModel& model, const Hull& hull, Priority p, uint64_t seed) {
   std::vector<uint32_t> order = priority_order(model, hull, p, seed);
   reorder_leaves(model, order);
-  model.meta["priority"] = std::string(priority_name(p));
+  model.bake.priority = std::string(priority_name(p));
 }
 
 }  // namespace forest

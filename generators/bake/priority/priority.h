@@ -1,4 +1,4 @@
-// Rendering priority of leaves (Neubert 2012 §7.3, reference/pruning.md "Rendering priority"):
+// Rendering priority of leaves (Neubert 2012 §7.3):
 // the order in which leaves survive pruning. The baked asset stores its leaves in this order,
 // so rendering a detail level λ is drawing a prefix of ⌈λ·N⌉ leaves.
 #pragma once
@@ -10,23 +10,10 @@
 #include <vector>
 
 #include "generators/bake/hull/hull.h"
+#include "generators/bake/priority/priority_names.h"
 #include "generators/model/tree_model.h"
 
 namespace forest {
-
-enum class Priority {
-  random,       // Cook et al. 2007: a seeded shuffle, uncorrelated with anything
-  density,      // Neubert 2012 §7.3.2: leaves in dense regions (high F) go first; random once uniform
-  orientation,  // Neubert 2012 §7.3.3: small angle α between leaf and hull normal survives longer
-  combined,     // Neubert 2012 §7.3.4: P = P_silhouette² + P_density, normalized, jittered, descending
-  // Ours, from Neubert 2012 §7.3's findings (density helps at high λ, orientation at small λ) taken as a
-  // switch instead of a blend: the leaves density's greedy phase removes go first, in that
-  // order; the survivors are kept by orientation (small α last to go).
-  layered,
-};
-
-std::string_view priority_name(Priority p);
-std::optional<Priority> parse_priority(std::string_view name);  // nullopt for unknown names
 
 struct PriorityParams {
   // Density order: greedy removal of the currently densest leaf (F updated as leaves go)
@@ -63,7 +50,7 @@ std::vector<uint32_t> priority_order(const TreeModel& model, const Hull& hull, P
 // unless order is a permutation of the leaf indices.
 void reorder_leaves(TreeModel& model, std::span<const uint32_t> order);
 
-// priority_order + reorder_leaves + meta["priority"] = priority_name(p).
+// priority_order + reorder_leaves + model.bake.priority = priority_name(p).
 void apply_priority(TreeModel& model, const Hull& hull, Priority p, uint64_t seed);
 
 }  // namespace forest

@@ -70,13 +70,6 @@ SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defau
   l.phyllotaxis = *parse_phyllotaxis(t.choice("phyllotaxis", phyllotaxis_name(defaults.leaves.phyllotaxis),
                                               {"alternate", "distichous", "opposite", "decussate", "spiral"}));
   l.color_jitter = float(t.number("leaf_color_jitter", defaults.leaves.color_jitter, 0.0, 0.5));
-  s.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", leaf_shape_name(defaults.leaf_shape),
-                                            {"ovate", "elliptic", "lanceolate", "needles"}));
-  s.mesher.min_sides = defaults.mesher.min_sides;
-  s.mesher.max_sides = defaults.mesher.max_sides;
-  read_ring_sides(t, s.mesher);
-  s.bark_color = t.vec3("bark_color", defaults.bark_color, 0.0, 1.0);
-  s.leaf_color = t.vec3("leaf_color", defaults.leaf_color, 0.0, 1.0);
   return s;
 }
 
@@ -170,8 +163,7 @@ size_t count_tips(const TreeGraph& graph) {
   return tips;
 }
 
-TreeModel finish_skeleton(TreeGraph graph, const SkeletonStyle& style, ModelDescription description,
-                          uint64_t seed) {
+TreeGraph finish_skeleton(TreeGraph graph, const SkeletonStyle& style, uint64_t seed) {
   smooth_chains(graph, style.smooth_iterations);
   simplify_chains(graph, style.simplify);
   if (style.radius_model == RadiusModel::Pipe)
@@ -180,10 +172,7 @@ TreeModel finish_skeleton(TreeGraph graph, const SkeletonStyle& style, ModelDesc
     assign_length_radii(graph, style.tip_radius, style.trunk_radius, style.zeta);
   graph.leaves.clear();
   if (style.leaves.size > 0.0f) place_twig_leaves(graph, style.leaves, seed);
-  description.bark_color = style.bark_color;
-  description.leaf_color = style.leaf_color;
-  description.leaf_shape = style.leaf_shape;
-  return build_tree_model(graph, description, style.mesher);
+  return graph;
 }
 
 }  // namespace forest

@@ -2,13 +2,11 @@
 // optional smoothing of the graph's zig-zag (the thesis leaves branches "a little wavy"),
 // Douglas–Peucker simplification of branch chains (keeps the triangle budget), radii by
 // w = s^ζ (Xu 2015 ch4.3: s = path length from the farthest tip below) or the pipe model,
-// leaves on the terminal twigs, and the shared model builder.
+// and leaves on the terminal twigs; the shared model stage (model_builder.h) does the rest.
 #pragma once
 #include <cstdint>
 #include <string>
 
-#include "generators/model/model_builder.h"
-#include "generators/mesh/leaf_texture.h"
 #include "generators/tree/leaves.h"
 #include "generators/tree/tree_graph.h"
 
@@ -27,20 +25,15 @@ struct SkeletonStyle {
   float zeta = 0.3f;             // taper exponent of w = s^ζ
   float pipe_exponent = 2.0f;    // Pipe model
   LeafParams leaves;
-  MesherParams mesher;
-  glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
-  glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
-  LeafShape leaf_shape = LeafShape::ovate;  // texture and card outline
 };
 
-// The species keys read by read_skeleton_style, for a method's check_keys list. leaf_shape
-// ("ovate", "elliptic", "lanceolate", "needles"), phyllotaxis ("alternate"/"distichous",
-// "opposite"/"decussate", "spiral") and leaf_color_jitter mean what they mean for lsystem.
+// The species keys read by read_skeleton_style, for a method's key list. phyllotaxis
+// ("alternate"/"distichous", "opposite"/"decussate", "spiral") and leaf_color_jitter mean
+// what they mean for lsystem.
 #define FOREST_SKELETON_STYLE_KEYS                                                          \
   "smooth", "simplify", "radius_model", "tip_radius", "trunk_radius", "zeta",              \
       "pipe_exponent", "leaf_size", "leaf_size_jitter", "leaf_angle", "leaf_angle_jitter",   \
-      "leaves_per_tip", "leaves_along", "ring_sides_min", "ring_sides_max", "bark_color",    \
-      "leaf_color", "leaf_shape", "phyllotaxis", "leaf_color_jitter"
+      "leaves_per_tip", "leaves_along", "phyllotaxis", "leaf_color_jitter"
 
 SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defaults = {});
 
@@ -59,8 +52,7 @@ void assign_length_radii(TreeGraph& graph, float tip_radius, float trunk_radius,
 
 size_t count_tips(const TreeGraph& graph);
 
-// Smooth, simplify, radii, leaves, mesh. `graph` must have parent < own index.
-TreeModel finish_skeleton(TreeGraph graph, const SkeletonStyle& style, ModelDescription description,
-                          uint64_t seed);
+// Smooth, simplify, radii, leaves (replacing any). `graph` must have parent < own index.
+TreeGraph finish_skeleton(TreeGraph graph, const SkeletonStyle& style, uint64_t seed);
 
 }  // namespace forest

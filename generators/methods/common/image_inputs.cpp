@@ -28,10 +28,16 @@ std::string fmt(double v) {
   throw InputError(where, 0, key, what);
 }
 
+// The value of a required key.
+const nlohmann::json& required(const nlohmann::json& j, const std::string& key, const std::string& where,
+                               const std::string& path) {
+  if (!j.contains(key)) fail(where, path + key, "missing required key");
+  return j.at(key);
+}
+
 double number(const nlohmann::json& j, const std::string& key, const std::string& where,
               const std::string& path, double lo, double hi) {
-  if (!j.contains(key)) fail(where, path + key, "missing required key");
-  const nlohmann::json& v = j.at(key);
+  const nlohmann::json& v = required(j, key, where, path);
   if (!v.is_number()) fail(where, path + key, "expected a number");
   double d = v.get<double>();
   if (!std::isfinite(d)) fail(where, path + key, "must be finite");
@@ -41,8 +47,7 @@ double number(const nlohmann::json& j, const std::string& key, const std::string
 
 int integer(const nlohmann::json& j, const std::string& key, const std::string& where,
             const std::string& path, int lo, int hi) {
-  if (!j.contains(key)) fail(where, path + key, "missing required key");
-  const nlohmann::json& v = j.at(key);
+  const nlohmann::json& v = required(j, key, where, path);
   if (!v.is_number_integer()) fail(where, path + key, "expected an integer");
   int64_t d = v.get<int64_t>();
   if (d < lo || d > hi) fail(where, path + key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
@@ -51,8 +56,7 @@ int integer(const nlohmann::json& j, const std::string& key, const std::string& 
 
 std::vector<double> numbers(const nlohmann::json& j, const std::string& key, const std::string& where,
                             const std::string& path, size_t count) {
-  if (!j.contains(key)) fail(where, path + key, "missing required key");
-  const nlohmann::json& v = j.at(key);
+  const nlohmann::json& v = required(j, key, where, path);
   if (!v.is_array() || v.size() != count)
     fail(where, path + key, "expected an array of " + std::to_string(count) + " numbers");
   std::vector<double> out;

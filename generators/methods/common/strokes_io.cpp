@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generators/core/input_error.h"
+#include "generators/core/text_file.h"
 
 namespace forest {
 
@@ -313,11 +314,7 @@ Drawing parse_drawing_svg(const std::string& text, const std::string& name) {
 }
 
 Drawing read_drawing(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), 0, "", "cannot open drawing file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  std::string text = s.str();
+  std::string text = read_text_file(file, "drawing file");
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError(file.string(), 0, "", "the drawing file is empty");
   std::string ext = file.extension().string();
@@ -406,6 +403,18 @@ std::vector<const Stroke*> strokes_with_role(const Drawing& d, const std::string
   for (const Stroke& s : d.strokes)
     if (s.role == role) out.push_back(&s);
   return out;
+}
+
+void write_drawing_files(const std::filesystem::path& dir,
+                         const std::vector<std::pair<std::string, std::string>>& files) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string(), 0, "--out", "cannot create folder: " + ec.message());
+  for (const auto& [name, text] : files) {
+    std::ofstream out(dir / name, std::ios::binary);
+    out << text;
+    if (!out) throw InputError((dir / name).string(), 0, "--out", "cannot write file");
+  }
 }
 
 }  // namespace forest

@@ -27,6 +27,7 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -61,6 +62,11 @@ std::string drawing_to_json(const Drawing& drawing);
 // An SVG document of the drawing (polylines; y flipped; role in class, parent in
 // data-parent). Depths are not stored (SVG has no third coordinate).
 std::string drawing_to_svg(const Drawing& drawing);
+
+// `forest make-inputs`: creates `dir` and writes each (file name, text) into it; InputError
+// naming the folder or file when it cannot.
+void write_drawing_files(const std::filesystem::path& dir,
+                         const std::vector<std::pair<std::string, std::string>>& files);
 
 // Index of each stroke's parent (-1 for none), after checking that parents exist, that no
 // stroke is its own parent and that the parent links form no cycle.

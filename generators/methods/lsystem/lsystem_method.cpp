@@ -6,16 +6,16 @@
 //   0 = no leaves) / leaf_size_jitter / leaf_angle / leaf_angle_jitter (deg) / leaves_per_tip
 //   (tip cluster) / leaves_along (leaf nodes per twig segment) / phyllotaxis ("alternate" or
 //   "distichous", "opposite" or "decussate", "whorled", "spiral") / leaves_per_node (whorled
-//   only, >= 3) / divergence_angle (deg, spiral only) / leaf_shape ("ovate", "elliptic",
-//   "lanceolate", "needles": texture and card) / leaf_color_jitter (per-leaf color variation),
-//   ring_sides_min / ring_sides_max (mesher), bark_color / leaf_color (linear RGB), and
-//   [[production]] tables { predecessor = "X" (one letter), successor = "...", weight = 1.0 }.
+//   only, >= 3) / divergence_angle (deg, spiral only) /
+//   leaf_color_jitter (per-leaf color variation), and [[production]] tables
+//   { predecessor = "X" (one letter), successor = "...", weight = 1.0 }; plus the shared
+//   look keys (model/look_keys.h).
 #include "generators/methods/lsystem/lsystem_method.h"
 
 #include <cmath>
 #include <vector>
 
-#include "generators/model/model_builder.h"
+#include "generators/core/toml_reader.h"
 #include "generators/tree/leaves.h"
 #include "generators/methods/lsystem/lsystem.h"
 #include "generators/tree/pipe_model.h"
@@ -29,17 +29,12 @@ constexpr int64_t kMaxIterations = 12;
 constexpr size_t kMaxLeaves = 1'000'000;
 
 struct LSystemSpecies {
-  uint64_t seed = 1;
   int iterations = 0;
   LSystem system;
   TurtleParams turtle;
   float tip_radius = 0.002f;
   float pipe_exponent = 2.0f;
   LeafParams leaves;
-  MesherParams mesher;
-  glm::vec3 bark_color{0.30f, 0.22f, 0.15f};
-  glm::vec3 leaf_color{0.18f, 0.35f, 0.08f};
-  LeafShape leaf_shape = LeafShape::ovate;
 };
 
 void check_syntax(const TomlTable& t, std::string_view key, const std::string& s) {
@@ -47,15 +42,7 @@ void check_syntax(const TomlTable& t, std::string_view key, const std::string& s
 }
 
 LSystemSpecies read_species(const TomlTable& t) {
-  t.check_keys({"method", "name", "seed", "iterations", "axiom", "angle", "angle_jitter",
-                "roll_jitter", "step", "step_jitter", "length_scale", "tip_radius",
-                "pipe_exponent", "tropism", "tropism_strength", "leaf_size", "leaf_size_jitter",
-                "leaf_angle", "leaf_angle_jitter", "leaves_per_tip", "leaves_along",
-                "phyllotaxis", "leaves_per_node", "divergence_angle", "leaf_shape",
-                "leaf_color_jitter", "ring_sides_min", "ring_sides_max", "bark_color", "leaf_color", "production"});
   LSystemSpecies s;
-  t.string("name", "");  // type check only; the name is read by the caller
-  s.seed = uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53));
   s.iterations = int(t.integer("iterations", 0, kMaxIterations));  // required
   s.system.axiom = t.string("axiom");
   if (s.system.axiom.empty()) t.fail("axiom", "must not be empty");
@@ -96,17 +83,10 @@ LSystemSpecies read_species(const TomlTable& t) {
   if (t.has("divergence_angle") && l.phyllotaxis != Phyllotaxis::spiral)
     t.fail("divergence_angle", "applies to phyllotaxis \"spiral\" only");
   l.color_jitter = float(t.number("leaf_color_jitter", 0.0, 0.0, 0.5));
-  s.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", "ovate", {"ovate", "elliptic", "lanceolate", "needles"}));
   p.leaf_angle_deg = l.angle_deg;
   p.leaf_size = l.size;
   p.leaf_size_jitter = l.size_jitter;
   p.leaf_color_jitter = l.color_jitter;
-
-  s.mesher.min_sides = 3;
-  s.mesher.max_sides = 8;
-  read_ring_sides(t, s.mesher);
-  s.bark_color = t.vec3("bark_color", s.bark_color, 0.0, 1.0);
-  s.leaf_color = t.vec3("leaf_color", s.leaf_color, 0.0, 1.0);
 
   for (const TomlTable& pt : t.tables("production")) {
     pt.check_keys({"predecessor", "successor", "weight"});
@@ -130,12 +110,15 @@ bool uses_leaf_symbols(const LSystem& system) {
   return false;
 }
 
-}  // namespace
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "iterations", "axiom", "angle", "angle_jitter", "roll_jitter", "step", "step_jitter",
+    "length_scale", "tip_radius", "pipe_exponent", "tropism", "tropism_strength", "leaf_size",
+    "leaf_size_jitter", "leaf_angle", "leaf_angle_jitter", "leaves_per_tip", "leaves_along",
+    "phyllotaxis", "leaves_per_node", "divergence_angle", "leaf_color_jitter", "production"};
 
-TreeModel generate_lsystem(const TomlTable& root, const std::string& species_name,
-                           const GenerateOptions& options) {
+Skeleton skeleton_pass(const TomlTable& root, uint64_t seed) {
   LSystemSpecies s = read_species(root);
-  uint64_t seed = options.seed.value_or(s.seed);
 
   std::string symbols;
   try {
@@ -167,19 +150,11 @@ TreeModel generate_lsystem(const TomlTable& root, const std::string& species_nam
     root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
               "gives " + std::to_string(graph.leaves.size()) + " leaves, more than " +
                   std::to_string(kMaxLeaves));
-
-  ModelDescription d;
-  d.method = "lsystem";
-  d.species = root.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(root.raw());
-  d.bark_color = s.bark_color;
-  d.leaf_color = s.leaf_color;
-  d.leaf_shape = s.leaf_shape;
-  return build_tree_model(graph, d, s.mesher);
+  return {std::move(graph)};
 }
 
-const char* lsystem_default_species_text() {
+// The built-in preset: the text of scenes/species/fig2_1.toml.
+const char* builtin_preset() {
   // Keep identical to scenes/species/fig2_1.toml (a unit test compares them).
   return R"toml(method = "lsystem"
 # Seed 000, Fig. 2.1 (c): a bracketed L-system plant (after ABOP Fig. 1.24 f).
@@ -217,5 +192,10 @@ predecessor = "F"
 successor = "FF"
 )toml";
 }
+
+}  // namespace
+
+constinit const MethodEntry kLsystemMethod{"lsystem", kKeys, skeleton_pass, builtin_preset,
+                                           nullptr};
 
 }  // namespace forest

@@ -2,18 +2,11 @@
 // parameters; the skeleton is the turtle's drawing of the rewritten string, radii follow the
 // pipe model, leaves come from L symbols or sit on the terminal twigs.
 #pragma once
-#include <string>
-
-#include "generators/core/toml_reader.h"
 #include "generators/species/registry.h"
 
 namespace forest {
 
-// `root` is the species table (its `method` already checked to be "lsystem").
-TreeModel generate_lsystem(const TomlTable& root, const std::string& species_name,
-                           const GenerateOptions& options);
-
-// The built-in preset: the text of scenes/species/fig2_1.toml.
-const char* lsystem_default_species_text();
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kLsystemMethod;
 
 }  // namespace forest

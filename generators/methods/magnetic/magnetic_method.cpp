@@ -94,35 +94,6 @@ TreeGraph magnetic_tree(const MagneticResult& r, const MagneticSpecies& s) {
   return g;
 }
 
-TreeModel generate_magnetic(const TomlTable& t, const std::string& species_name,
-                            const GenerateOptions& options) {
-  t.check_keys({"method", "name", "seed", "mode", "size", "cell", "dt", "speed", "mass", "profile",
-                "q0", "trunk_q0", "amplitude", "mean", "period", "field", "field_noise", "noise_scale",
-                "field_tilt", "child_spacing", "max_curves", "max_depth", "scale", "spiral",
-                FOREST_SKELETON_STYLE_KEYS});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
-  MagneticSpecies s = read_magnetic_species(t);
-  s.field.seed = seed;
-  SkeletonStyle defaults;
-  defaults.simplify = 0.01f;
-  defaults.smooth_iterations = 0;
-  defaults.trunk_radius = 0.12f;
-  defaults.tip_radius = 0.003f;
-  SkeletonStyle style = read_skeleton_style(t, defaults);
-  MagneticResult r = grow_magnetic(s.fill, s.field, seed);
-  TreeGraph graph = magnetic_tree(r, s);
-  if (graph.nodes.size() < 2) t.fail("size", "the first particle left the domain at once");
-  ModelDescription d;
-  d.method = "magnetic";
-  d.species = t.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(t.raw());
-  TreeModel model = finish_skeleton(std::move(graph), style, d, seed);
-  model.meta["curves"] = r.curves.size();
-  return model;
-}
-
 std::string magnetic_svg_from_species_text(const std::string& text, const std::string& name,
                                            std::optional<uint64_t> seed) {
   TomlDocument doc = TomlDocument::parse(text, name);
@@ -136,7 +107,33 @@ std::string magnetic_svg_from_species_text(const std::string& text, const std::s
   return magnetic_svg(r, glm::dvec2(s.fill.size.x, s.fill.size.y));
 }
 
-const char* magnetic_default_species_text() {
+namespace {
+
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "mode", "size", "cell", "dt", "speed", "mass", "profile", "q0", "trunk_q0", "amplitude",
+    "mean", "period", "field", "field_noise", "noise_scale", "field_tilt", "child_spacing",
+    "max_curves", "max_depth", "scale", "spiral", FOREST_SKELETON_STYLE_KEYS};
+
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
+  MagneticSpecies s = read_magnetic_species(t);
+  s.field.seed = seed;
+  SkeletonStyle defaults;
+  defaults.simplify = 0.01f;
+  defaults.smooth_iterations = 0;
+  defaults.trunk_radius = 0.12f;
+  defaults.tip_radius = 0.003f;
+  SkeletonStyle style = read_skeleton_style(t, defaults);
+  MagneticResult r = grow_magnetic(s.fill, s.field, seed);
+  TreeGraph graph = magnetic_tree(r, s);
+  if (graph.nodes.size() < 2) t.fail("size", "the first particle left the domain at once");
+  Skeleton out{finish_skeleton(std::move(graph), style, seed)};
+  out.meta["curves"] = r.curves.size();
+  return out;
+}
+
+// The built-in preset: the text of scenes/species/magnetic_klimt.toml.
+const char* builtin_preset() {
   // Keep identical to scenes/species/magnetic_klimt.toml (a unit test compares them).
   return R"toml(method = "magnetic"
 # Seed 001 ch7, Fig. 7.7: a Klimt-style tree of space-filling magnetic curves, as a planar
@@ -184,5 +181,10 @@ T = 50.0
 alpha = 0.65
 )toml";
 }
+
+}  // namespace
+
+constinit const MethodEntry kMagneticMethod{"magnetic", kKeys, skeleton_pass, builtin_preset,
+                                            nullptr};
 
 }  // namespace forest

@@ -23,15 +23,12 @@ MagneticSpecies read_magnetic_species(const TomlTable& t);
 // TreeNode::order = curve depth.
 TreeGraph magnetic_tree(const MagneticResult& r, const MagneticSpecies& s);
 
-TreeModel generate_magnetic(const TomlTable& root, const std::string& species_name,
-                            const GenerateOptions& options);
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kMagneticMethod;
 
 // For `forest generate --method magnetic --svg out.svg` (or --species FILE): the SVG of the
 // curves the species makes with that seed. `text` is the species TOML, `name` its file name.
 std::string magnetic_svg_from_species_text(const std::string& text, const std::string& name,
                                            std::optional<uint64_t> seed);
-
-// The built-in preset: the text of scenes/species/magnetic_klimt.toml.
-const char* magnetic_default_species_text();
 
 }  // namespace forest

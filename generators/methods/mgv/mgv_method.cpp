@@ -75,12 +75,13 @@ MgvParams read_mgv_params(const TomlTable& t) {
   return P;
 }
 
-TreeModel generate_mgv(const TomlTable& t, const std::string& species_name,
-                       const GenerateOptions& options) {
-  t.check_keys({"method", "name", "seed", "size", "nodes", "reach", "iteration",
-                FOREST_SKELETON_STYLE_KEYS});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+namespace {
+
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "size", "nodes", "reach", "iteration", FOREST_SKELETON_STYLE_KEYS};
+
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   MgvParams P = read_mgv_params(t);
   SkeletonStyle defaults;
   defaults.simplify = 0.05f;
@@ -89,18 +90,14 @@ TreeModel generate_mgv(const TomlTable& t, const std::string& species_name,
   MgvStats stats;
   TreeGraph tree = grow_mgv(graph, P, seed, &stats);
   if (tree.nodes.size() < 2) t.fail("iteration", "no endpoint could be joined to the root");
-  ModelDescription d;
-  d.method = "mgv";
-  d.species = t.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(t.raw());
-  TreeModel model = finish_skeleton(std::move(tree), style, d, seed);
-  model.meta["graph_nodes"] = graph.graph.size();
-  model.meta["endpoints"] = stats.endpoints;
-  return model;
+  Skeleton out{finish_skeleton(std::move(tree), style, seed)};
+  out.meta["graph_nodes"] = graph.graph.size();
+  out.meta["endpoints"] = stats.endpoints;
+  return out;
 }
 
-const char* mgv_default_species_text() {
+// The built-in preset: the text of scenes/species/mgv_c.toml.
+const char* builtin_preset() {
   // Keep identical to scenes/species/mgv_c.toml (a unit test compares them).
   return R"toml(method = "mgv"
 # Seed 001 Table 6.1 (c), the ash of Fig. 5.5 (c) / 6.6: iteration 1 is the trunk (one
@@ -161,5 +158,9 @@ alpha2 = 0.0
 h0 = 1
 )toml";
 }
+
+}  // namespace
+
+constinit const MethodEntry kMgvMethod{"mgv", kKeys, skeleton_pass, builtin_preset, nullptr};
 
 }  // namespace forest

@@ -1,5 +1,5 @@
 // Method `mgv` (Xu 2015 ch5–6): species file -> MgvParams -> grow_mgv (mgv_grow.h) ->
-// skeleton style (radii w = s^ζ or pipe model, leaves) -> build_tree_model.
+// skeleton style (radii w = s^ζ or pipe model, leaves) -> the shared model stage.
 #pragma once
 #include <string>
 
@@ -12,10 +12,7 @@ namespace forest {
 // Reads the method's keys (not the skeleton style); errors name file, line and key.
 MgvParams read_mgv_params(const TomlTable& t);
 
-TreeModel generate_mgv(const TomlTable& root, const std::string& species_name,
-                       const GenerateOptions& options);
-
-// The built-in preset: the text of scenes/species/mgv_c.toml.
-const char* mgv_default_species_text();
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kMgvMethod;
 
 }  // namespace forest

@@ -226,15 +226,12 @@ MigParams read_params(const TomlTable& t) {
   return P;
 }
 
-}  // namespace
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "nodes", "spacing", "reach", "root", "shell", "subgraph_nodes", "subgraph_radius", "shrink",
+    "volume", "level", FOREST_SKELETON_STYLE_KEYS};
 
-TreeModel generate_mig(const TomlTable& t, const std::string& species_name,
-                       const GenerateOptions& options) {
-  t.check_keys({"method", "name", "seed", "nodes", "spacing", "reach", "root", "shell",
-                "subgraph_nodes", "subgraph_radius", "shrink", "volume", "level",
-                FOREST_SKELETON_STYLE_KEYS});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   MigParams P = read_params(t);
   SkeletonStyle defaults;
   defaults.simplify = 0.05f;
@@ -242,20 +239,16 @@ TreeModel generate_mig(const TomlTable& t, const std::string& species_name,
   MigStats stats;
   TreeGraph graph = grow_mig(P, seed, &stats);
   if (graph.nodes.size() < 2) t.fail("volume", "no endpoint could be joined to the root");
-  ModelDescription d;
-  d.method = "mig";
-  d.species = t.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(t.raw());
-  TreeModel model = finish_skeleton(std::move(graph), style, d, seed);
-  model.meta["graph_nodes"] = stats.graph_nodes;
-  model.meta["subgraphs"] = stats.subgraphs;
-  model.meta["endpoints"] = stats.endpoints;
-  model.meta["unreachable_candidates"] = stats.unreachable;
-  return model;
+  Skeleton out{finish_skeleton(std::move(graph), style, seed)};
+  out.meta["graph_nodes"] = stats.graph_nodes;
+  out.meta["subgraphs"] = stats.subgraphs;
+  out.meta["endpoints"] = stats.endpoints;
+  out.meta["unreachable_candidates"] = stats.unreachable;
+  return out;
 }
 
-const char* mig_default_species_text() {
+// The built-in preset: the text of scenes/species/mig_o.toml.
+const char* builtin_preset() {
   // Keep identical to scenes/species/mig_o.toml (a unit test compares them).
   return R"toml(method = "mig"
 # Seed 001 Table 4.1 (o): "cylinder and portion of sphere with alpha = 0.7 pi, b = 11;
@@ -306,5 +299,9 @@ alpha = 81.0            # 0.45 pi
 # budget; mig_a_hero shows a full four-level tree.
 )toml";
 }
+
+}  // namespace
+
+constinit const MethodEntry kMigMethod{"mig", kKeys, skeleton_pass, builtin_preset, nullptr};
 
 }  // namespace forest

@@ -50,10 +50,7 @@ struct MigStats {
 // TreeNode::order = level − 1.
 TreeGraph grow_mig(const MigParams& params, uint64_t seed, MigStats* stats = nullptr);
 
-TreeModel generate_mig(const TomlTable& root, const std::string& species_name,
-                       const GenerateOptions& options);
-
-// The built-in preset: the text of scenes/species/mig_o.toml.
-const char* mig_default_species_text();
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kMigMethod;
 
 }  // namespace forest

@@ -13,13 +13,15 @@
 
 namespace forest {
 
-TreeModel generate_particle_flow(const TomlTable& t, const std::string& species_name,
-                                 const GenerateOptions& options) {
-  check_image_species_keys(t, {"voxels", "carve_threshold", "particles", "iterations", "integrator",
-                               "w_base", "w_field", "w_neighbour", "mass", "merge_radius",
-                               "segment_length", "field_cells", "blend", "h_constant"});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+namespace {
+
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "voxels", "carve_threshold", "particles", "iterations", "integrator", "w_base", "w_field",
+    "w_neighbour", "mass", "merge_radius", "segment_length", "field_cells", "blend", "h_constant",
+    FOREST_IMAGE_SPECIES_KEYS};
+
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   DensitySolveParams dp;
   dp.resolution = int(t.integer("voxels", dp.resolution, 4, 96));
   dp.carve_threshold = t.number("carve_threshold", dp.carve_threshold, 0.0, 1.0);
@@ -42,12 +44,8 @@ TreeModel generate_particle_flow(const TomlTable& t, const std::string& species_
     field.constant_h = true;
     field.h_constant = t.number("h_constant", 0.0, 1.0);
   }
-  TreeLook look;
-  look.tip_radius = 0.008f;
-  look.pipe_exponent = 2.3f;
-  look.leaves.size = 0.15f;
-  look.leaves.along = 1;
-  look = read_tree_look(t, look);
+  const ImageTreeStyle style = read_image_tree_style(
+      t, {.tip_radius = 0.008f, .pipe_exponent = 2.3f, .leaves = {.size = 0.15f, .along = 1}});
   ViewSet views = read_image_input(t);
 
   DensitySolution density = solve_density(views, dp);
@@ -67,10 +65,11 @@ TreeModel generate_particle_flow(const TomlTable& t, const std::string& species_
   stats["trace_joins"] = flow.trace_joins;
   stats["arrived"] = flow.arrived;
   stats["forced_joins"] = flow.forced_joins;
-  return finish_image_tree(std::move(flow.graph), look, views, t, "particle-flow", species_name, seed, stats);
+  return finish_image_tree(std::move(flow.graph), style, views, seed, std::move(stats));
 }
 
-const char* particle_flow_default_species_text() {
+// Built-in preset: two orthographic 128x128 masks of a synthetic crown, made in memory.
+const char* builtin_preset() {
   return R"toml(method = "particle-flow"
 # Seed 000 ch3 (Neubert et al. 2007): two orthographic masks at 90 degrees of a synthetic
 # ellipsoid crown with projected trunk + first-order branches as attractors, made in memory.
@@ -83,24 +82,21 @@ leaf_size = 0.16
 )toml";
 }
 
-void particle_flow_make_inputs(const std::filesystem::path& dir) {
-  CrownSpec oak;
-  oak.shape = "ellipsoid";
-  oak.height = 10.0;
-  oak.width = 9.0;
-  oak.depth = 7.0;
-  oak.trunk_height = 3.0;
-  oak.trunk_radius = 0.4;
-  oak.branches = 6;
+// dir/oak and dir/poplar: views.json (2 orthographic views at 90 degrees, attractor
+// polylines inline) + two 128x128 masks each, and views_svg.json with the same attractors in
+// view0_attractors.svg / view1_attractors.svg (pixel coordinates).
+void write_inputs(const std::filesystem::path& dir) {
+  const CrownSpec oak{.shape = "ellipsoid", .height = 10.0, .width = 9.0, .depth = 7.0,
+                      .trunk_height = 3.0, .trunk_radius = 0.4, .branches = 6};
+  const CrownSpec poplar{.shape = "ellipsoid", .height = 14.0, .width = 4.0, .depth = 3.5,
+                         .trunk_height = 2.0, .trunk_radius = 0.3, .branches = 5};
   write_view_set(synthesize_view_set(oak), dir / "oak", true);
-  CrownSpec poplar = oak;
-  poplar.height = 14.0;
-  poplar.width = 4.0;
-  poplar.depth = 3.5;
-  poplar.trunk_height = 2.0;
-  poplar.trunk_radius = 0.3;
-  poplar.branches = 5;
   write_view_set(synthesize_view_set(poplar), dir / "poplar", true);
 }
+
+}  // namespace
+
+constinit const MethodEntry kParticleFlowMethod{"particle-flow", kKeys, skeleton_pass,
+                                                builtin_preset, write_inputs};
 
 }  // namespace forest

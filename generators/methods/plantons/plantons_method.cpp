@@ -2,32 +2,29 @@
 //   name, seed, model (learned model file, relative to the preset) or ground_truth (number of
 //   ground-truth trees to learn from in-process; exactly one of the two), max_organs,
 //   max_depth, segments (nodes per stem), min_radius (m), leaf_scale (× learned leaf
-//   length), leaf_shape, ring_sides_min, ring_sides_max, bark_color, leaf_color.
+//   length); plus the shared look keys (model/look_keys.h).
 #include "generators/methods/plantons/plantons_method.h"
 
-#include "generators/model/model_builder.h"
+#include "generators/core/toml_reader.h"
 #include "generators/methods/plantons/plantons_learn.h"
 #include "generators/methods/plantons/plantons_samples.h"
 #include "generators/methods/plantons/plantons_synth.h"
-#include "generators/mesh/leaf_texture.h"
 
 namespace forest {
 
-TreeModel generate_plantons(const TomlTable& t, const std::string& species_name, const GenerateOptions& options) {
-  t.check_keys({"method", "name", "seed", "model", "ground_truth", "max_organs", "max_depth", "segments",
-                "min_radius", "leaf_scale", "leaf_shape", "ring_sides_min", "ring_sides_max", "bark_color",
-                "leaf_color"});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+namespace {
+
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "model", "ground_truth", "max_organs", "max_depth", "segments", "min_radius", "leaf_scale"};
+
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   if (t.has("model") == t.has("ground_truth"))
     t.fail(t.has("model") ? "ground_truth" : "model", "give exactly one of `model` (a learned model file) and `ground_truth`");
   PlantonModel model;
   std::string source;
   if (t.has("model")) {
-    std::filesystem::path file = t.string("model");
-    if (file.is_relative()) file = std::filesystem::path(t.file()).parent_path() / file;
-    if (!std::filesystem::exists(file)) t.fail("model", "no such file '" + file.string() + "'");
-    model = load_model(file);
+    model = load_model(t.existing_file("model"));
     source = t.string("model");
   } else {
     size_t trees = size_t(t.integer("ground_truth", 1, 64));
@@ -43,22 +40,11 @@ TreeModel generate_plantons(const TomlTable& t, const std::string& species_name,
   om.segments = int(t.integer("segments", 6, 1, 64));
   om.min_radius = float(t.number("min_radius", 0.002, 1e-5, 1.0));
   double leaf_scale = t.number("leaf_scale", 1.0, 0.01, 100.0);
-  ModelDescription d;
-  d.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", "ovate", {"ovate", "elliptic", "lanceolate", "needles"}));
-  MesherParams mesher;
-  read_ring_sides(t, mesher);
-  d.bark_color = t.vec3("bark_color", d.bark_color, 0.0, 1.0);
-  d.leaf_color = t.vec3("leaf_color", d.leaf_color, 0.0, 1.0);
 
   SynthesizedTree s = synthesize_plantons(model, sp, seed);
   for (Organ& o : s.tree.organs)
     if (o.type == OrganType::Leaf) o.s[0] *= leaf_scale;
-  TreeGraph graph = graph_from_organs(s.tree, om);
-  d.method = "plantons";
-  d.species = t.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(t.raw());
-  TreeModel out = build_tree_model(graph, d, mesher);
+  Skeleton out{graph_from_organs(s.tree, om)};
   size_t stems = 0;
   for (const Organ& o : s.tree.organs) stems += o.type == OrganType::Stem;
   out.meta["plantons"] = model.N();
@@ -69,7 +55,8 @@ TreeModel generate_plantons(const TomlTable& t, const std::string& species_name,
   return out;
 }
 
-const char* plantons_default_species_text() {
+// The built-in preset: learns from three ground-truth trees in-process, then synthesizes.
+const char* builtin_preset() {
   return R"toml(method = "plantons"
 # Seed 004 (Wang et al. 2006) on the reference note's synthetic ground truth: plantons T
 # (trunk), P, S (branches) and L (leaves) are learned in-process from three ground-truth
@@ -84,5 +71,10 @@ bark_color = [0.26, 0.2, 0.15]
 leaf_color = [0.15, 0.32, 0.07]
 )toml";
 }
+
+}  // namespace
+
+constinit const MethodEntry kPlantonsMethod{"plantons", kKeys, skeleton_pass, builtin_preset,
+                                            plantons_make_inputs};
 
 }  // namespace forest

@@ -3,13 +3,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include <Eigen/Dense>
 
 #include "generators/asset/asset_io.h"
 #include "generators/core/input_error.h"
+#include "generators/core/text_file.h"
 #include "generators/methods/plantons/plantons_model.h"
 
 namespace forest {
@@ -315,11 +314,7 @@ PlantonModel parse_model(const std::string& text, const std::string& name) {
 }
 
 PlantonModel load_model(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "", "cannot open planton model file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_model(s.str(), path.string());
+  return parse_model(read_text_file(path, "planton model file"), path.string());
 }
 
 }  // namespace forest

@@ -1,13 +1,13 @@
 #include "generators/methods/plantons/plantons_samples.h"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
 #include "generators/asset/asset_io.h"
 #include "generators/core/input_error.h"
+#include "generators/core/text_file.h"
 #include "generators/species/registry.h"
 #include "generators/methods/plantons/plantons_synth.h"
 
@@ -135,6 +135,16 @@ void save_samples(const std::vector<TreeGraph>& trees, const std::filesystem::pa
   write_file_atomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
 }
 
+namespace {
+// A JSON array of exactly `n` finite numbers, none beyond 1e6 in magnitude.
+bool finite_numbers(const nlohmann::json& a, size_t n) {
+  if (!a.is_array() || a.size() != n) return false;
+  for (const nlohmann::json& v : a)
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e6) return false;
+  return true;
+}
+}  // namespace
+
 std::vector<TreeGraph> parse_samples(const std::string& text, const std::string& name) {
   using nlohmann::json;
   auto line_at = [&](size_t offset) {
@@ -170,10 +180,7 @@ std::vector<TreeGraph> parse_samples(const std::string& text, const std::string&
     for (size_t i = 0; i < nodes.size(); ++i) {
       const json& n = nodes[i];
       const std::string nk = ".nodes[" + std::to_string(i) + "]";
-      if (!n.is_array() || n.size() != 6) fail(nk, "must be [x, y, z, radius, parent, order]");
-      for (const json& v : n)
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e6)
-          fail(nk, "must hold finite numbers (|x| <= 1e6)");
+      if (!finite_numbers(n, 6)) fail(nk, "must be [x, y, z, radius, parent, order] of finite numbers (|x| <= 1e6)");
       TreeNode node;
       node.position = {n[0].get<float>(), n[1].get<float>(), n[2].get<float>()};
       node.radius = n[3].get<float>();
@@ -193,10 +200,7 @@ std::vector<TreeGraph> parse_samples(const std::string& text, const std::string&
       for (size_t i = 0; i < leaves.size(); ++i) {
         const json& l = leaves[i];
         const std::string lk = ".leaves[" + std::to_string(i) + "]";
-        if (!l.is_array() || l.size() != 8) fail(lk, "must be [x, y, z, qw, qx, qy, qz, scale]");
-        for (const json& v : l)
-          if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e6)
-            fail(lk, "must hold finite numbers (|x| <= 1e6)");
+        if (!finite_numbers(l, 8)) fail(lk, "must be [x, y, z, qw, qx, qy, qz, scale] of finite numbers (|x| <= 1e6)");
         LeafPlacement p;
         p.position = {l[0].get<float>(), l[1].get<float>(), l[2].get<float>()};
         p.rotation = glm::quat(l[3].get<float>(), l[4].get<float>(), l[5].get<float>(), l[6].get<float>());
@@ -214,11 +218,7 @@ std::vector<TreeGraph> parse_samples(const std::string& text, const std::string&
 }
 
 std::vector<TreeGraph> load_samples(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "", "cannot open sample file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_samples(s.str(), path.string());
+  return parse_samples(read_text_file(path, "sample file"), path.string());
 }
 
 void plantons_make_inputs(const std::filesystem::path& dir) {

@@ -8,16 +8,13 @@
 //   phyllotaxis ("none", "spiral", "decussate", "whorl3"),
 //   density (extra 3D branches per inferred one), gibbs_iterations (<= 3000), max_branches,
 //   tip_radius, pipe_exponent, leaf_size (default: the leaf silhouette's length),
-//   leaves_per_tip, leaves_along, leaf_angle, ring_sides_min / ring_sides_max,
-//   bark_color, leaf_color.
+//   leaves_per_tip, leaves_along, leaf_angle; plus the shared look keys (model/look_keys.h).
 #include "generators/methods/silhouettes/silhouettes_method.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include "generators/core/rng.h"
-#include "generators/model/model_builder.h"
 #include "generators/methods/silhouettes/silhouettes_placement.h"
 #include "generators/methods/silhouettes/silhouettes_style.h"
 #include "generators/methods/sketch_mrf/sketch_propagation.h"
@@ -266,47 +263,16 @@ struct Embedding {
   glm::dvec3 linear(glm::dvec2 v) const { return v.x * ex + v.y * ey; }
 };
 
-// Copies node `src`'s 2D subtree into h, moved so that its base goes to `base` on the
-// same parent at parameter t, scaled about the base by `scale`. Returns the new root.
-int copy_subtree(std::vector<SilhouetteNode>& h, int src, int parent, glm::dvec2 base, double t, double scale,
-                 size_t max_nodes) {
-  glm::dvec2 from = h[size_t(src)].branch.curve.front();
-  auto move = [&](glm::dvec2 p) { return base + scale * (p - from); };
-  std::vector<std::pair<int, int>> todo{{src, parent}};
-  int root = -1;
-  for (size_t q = 0; q < todo.size() && h.size() < max_nodes; ++q) {
-    auto [s, p] = todo[q];
-    SilhouetteNode n = h[size_t(s)];
-    for (glm::dvec2& v : n.branch.curve) v = move(v);
-    for (glm::dvec2& v : n.branch.crown) v = move(v);
-    n.parent = p;
-    std::vector<int> kids = n.children;
-    n.children.clear();
-    if (q == 0) n.branch.t = t, n.branch.filled = true;
-    int id = int(h.size());
-    h.push_back(std::move(n));
-    h[size_t(p)].children.push_back(id);
-    if (q == 0) root = id;
-    for (int c : kids) todo.push_back({c, id});
-  }
-  return root;
-}
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "drawing", "synthetic", "bottom_angle", "top_angle", "levels", "fill_overlap", "fill_samples",
+    "style_copy", "phyllotaxis", "density", "gibbs_iterations", "max_branches", "tip_radius",
+    "pipe_exponent", "leaf_size", "leaves_per_tip", "leaves_along", "leaf_angle"};
 
-}  // namespace
-
-TreeModel generate_silhouettes(const TomlTable& t, const std::string& species_name, const GenerateOptions& options) {
-  t.check_keys({"method", "name", "seed", "drawing", "synthetic", "bottom_angle", "top_angle", "levels",
-                "fill_overlap", "fill_samples", "style_copy", "phyllotaxis", "density", "gibbs_iterations", "max_branches",
-                "tip_radius", "pipe_exponent", "leaf_size", "leaves_per_tip", "leaves_along", "leaf_angle",
-                "ring_sides_min", "ring_sides_max", "bark_color", "leaf_color"});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   Drawing drawing;
   if (t.has("drawing")) {
-    std::filesystem::path file = t.string("drawing");
-    if (file.is_relative()) file = std::filesystem::path(t.file()).parent_path() / file;
-    if (!std::filesystem::exists(file)) t.fail("drawing", "no such file '" + file.string() + "'");
-    drawing = read_drawing(file);
+    drawing = read_drawing(t.existing_file("drawing"));
   } else {
     drawing = silhouettes_synthetic_drawing(t.choice("synthetic", "round", {"round", "poplar"}));
   }
@@ -380,7 +346,9 @@ TreeModel generate_silhouettes(const TomlTable& t, const std::string& species_na
       for (int c : kids)
         if (std::abs(h[size_t(c)].branch.t * L - pts[e].u) < std::abs(h[size_t(src)].branch.t * L - pts[e].u)) src = c;
       double t = pts[e].u / L;
-      int id = copy_subtree(h, src, k, axis.at(t), t, 1.0, sp.max_branches * 2);
+      const glm::dvec2 from = h[size_t(src)].branch.curve.front(), base = axis.at(t);
+      auto move = [&](glm::dvec2 p) { return base + (p - from); };
+      int id = copy_subtree(h, src, k, t, move, sp.max_branches * 2);
       if (id < 0) break;
       // The copy keeps its source's side; its azimuth is the free theta of the Gibbs process.
       kids.push_back(id);
@@ -462,24 +430,13 @@ TreeModel generate_silhouettes(const TomlTable& t, const std::string& species_na
   lp.angle_deg = float(t.number("leaf_angle", 45.0, 0.0, 180.0));
   if (lp.size > 0.0f) place_twig_leaves(graph, lp, seed);
 
-  MesherParams mesher;
-  mesher.min_sides = 3;
-  mesher.max_sides = 8;
-  read_ring_sides(t, mesher);
-  ModelDescription d;
-  d.method = "silhouettes";
-  d.species = t.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(t.raw());
-  d.bark_color = t.vec3("bark_color", glm::vec3(0.24f, 0.18f, 0.12f), 0.0, 1.0);
-  d.leaf_color = t.vec3("leaf_color", glm::vec3(0.15f, 0.33f, 0.07f), 0.0, 1.0);
-  TreeModel model = build_tree_model(graph, d, mesher);
-  model.meta["silhouettes"] = {{"inferred_branches", inferred_count - 1}, {"branches_3d", h.size() - 1},
+  Skeleton out{std::move(graph)};
+  out.meta["silhouettes"] = {{"inferred_branches", inferred_count - 1}, {"branches_3d", h.size() - 1},
                                {"first_level", h[0].children.size()}, {"restyled", restyled}};
-  return model;
+  return out;
 }
 
-const char* silhouettes_default_species_text() {
+const char* builtin_preset() {
   return R"toml(method = "silhouettes"
 # Built-in preset: the reference note's synthetic drawing (trunk, bumpy round crown, one
 # over-sketched branch, leaf silhouette), made in memory.
@@ -488,22 +445,23 @@ seed = 1
 synthetic = "round"
 phyllotaxis = "spiral"
 levels = 3
+bark_color = [0.24, 0.18, 0.12]
+leaf_color = [0.15, 0.33, 0.07]
 )toml";
 }
 
-void silhouettes_make_inputs(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir.string(), 0, "--out", "cannot create folder: " + ec.message());
-  auto write = [&](const std::string& name, const std::string& text) {
-    std::ofstream out(dir / name, std::ios::binary);
-    out << text;
-    if (!out) throw InputError((dir / name).string(), 0, "--out", "cannot write file");
-  };
+// Writes dir/round.json, dir/round.svg and dir/poplar.json.
+void write_inputs(const std::filesystem::path& dir) {
   Drawing round = silhouettes_synthetic_drawing("round");
-  write("round.json", drawing_to_json(round));
-  write("round.svg", drawing_to_svg(round));
-  write("poplar.json", drawing_to_json(silhouettes_synthetic_drawing("poplar")));
+  Drawing poplar = silhouettes_synthetic_drawing("poplar");
+  write_drawing_files(dir, {{"round.json", drawing_to_json(round)},
+                            {"round.svg", drawing_to_svg(round)},
+                            {"poplar.json", drawing_to_json(poplar)}});
 }
+
+}  // namespace
+
+constinit const MethodEntry kSilhouettesMethod{"silhouettes", kKeys, skeleton_pass, builtin_preset,
+                                               write_inputs};
 
 }  // namespace forest

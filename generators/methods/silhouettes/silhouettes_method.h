@@ -15,11 +15,8 @@
 
 namespace forest {
 
-TreeModel generate_silhouettes(const TomlTable& species, const std::string& species_name,
-                               const GenerateOptions& options);
-const char* silhouettes_default_species_text();
-// Writes dir/round.json, dir/round.svg and dir/poplar.json.
-void silhouettes_make_inputs(const std::filesystem::path& dir);
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kSilhouettesMethod;
 
 // The synthetic drawings: "round" (the reference note's trunk (0,0)-(0,8), ellipse centre
 // (0, 6) radii 3 x 2.5 with 5 discs at 20, 60, 90, 120, 160 degrees, one scripted level-1

@@ -55,6 +55,28 @@ std::vector<double> style_positions(const BranchingStyle& s, Rng& rng, size_t ma
   return out;
 }
 
+int copy_subtree(std::vector<SilhouetteNode>& h, int src, int parent, double t,
+                 const std::function<glm::dvec2(glm::dvec2)>& move, size_t max_nodes) {
+  std::vector<std::pair<int, int>> todo{{src, parent}};
+  int root = -1;
+  for (size_t q = 0; q < todo.size() && h.size() < max_nodes; ++q) {
+    auto [s, p] = todo[q];
+    SilhouetteNode n = h[size_t(s)];
+    for (glm::dvec2& v : n.branch.curve) v = move(v);
+    for (glm::dvec2& v : n.branch.crown) v = move(v);
+    n.parent = p;
+    std::vector<int> kids = n.children;
+    n.children.clear();
+    if (q == 0) n.branch.t = t, n.branch.filled = true, n.branch.sketched = false;
+    int id = int(h.size());
+    h.push_back(std::move(n));
+    h[size_t(p)].children.push_back(id);
+    if (q == 0) root = id;
+    for (int c : kids) todo.push_back({c, id});
+  }
+  return root;
+}
+
 size_t copy_style(std::vector<SilhouetteNode>& h, int source, Rng& rng, size_t max_nodes) {
   const SilhouetteNode& src = h[size_t(source)];
   Polyline2 src_axis(src.branch.curve);
@@ -71,6 +93,7 @@ size_t copy_style(std::vector<SilhouetteNode>& h, int source, Rng& rng, size_t m
     if (int(k) == source || h[k].level != level || h[k].children.empty()) continue;
     Polyline2 axis(h[k].branch.curve);
     const double scale = axis.length() / src_len;
+    const std::vector<int> old_children = h[k].children;
     std::vector<int> fresh;
     for (double t : style_positions(style, rng)) {
       int from = src_children[0];
@@ -85,26 +108,11 @@ size_t copy_style(std::vector<SilhouetteNode>& h, int source, Rng& rng, size_t m
       double turn = signed_angle_deg(old_dir, new_dir);
       glm::dvec2 from_base = sb.curve.front(), base = axis.at(t);
       auto move = [&](glm::dvec2 p) { return base + scale * rotate(p - from_base, turn); };
-      // Copy the source child's subtree.
-      std::vector<std::pair<int, int>> todo{{from, int(k)}};
-      for (size_t q = 0; q < todo.size() && h.size() < max_nodes; ++q) {
-        auto [s, p] = todo[q];
-        SilhouetteNode c = h[size_t(s)];
-        for (glm::dvec2& v : c.branch.curve) v = move(v);
-        for (glm::dvec2& v : c.branch.crown) v = move(v);
-        c.parent = p;
-        std::vector<int> grand = c.children;
-        c.children.clear();
-        if (q == 0) c.branch.t = t, c.branch.filled = true, c.branch.sketched = false;
-        int id = int(h.size());
-        h.push_back(std::move(c));
-        if (q == 0) fresh.push_back(id);
-        else h[size_t(p)].children.push_back(id);
-        for (int g : grand) todo.push_back({g, id});
-      }
+      int id = copy_subtree(h, from, int(k), t, move, max_nodes);
+      if (id >= 0) fresh.push_back(id);
     }
     if (fresh.empty()) continue;
-    for (int c : h[k].children) h[size_t(c)].parent = -1;  // detached: no longer drawn
+    for (int c : old_children) h[size_t(c)].parent = -1;  // detached: no longer drawn
     h[k].children = fresh;
     ++restyled;
   }

@@ -6,6 +6,7 @@
 // source child nearest in t, turned to the source's BAF at its new place and scaled by the
 // ratio of the branch lengths.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "generators/core/rng.h"
@@ -27,6 +28,12 @@ BranchingStyle measure_style(const Polyline2& axis, const std::vector<const Bran
 // Child positions t in [unbranched, 1] from the style: the first at the unbranched range,
 // then steps ~ N(mean, sd) (at least 2 % of the length); at most `max` positions.
 std::vector<double> style_positions(const BranchingStyle& style, Rng& rng, size_t max = 64);
+
+// Copies node `src`'s 2D subtree into h as a new child of `parent` at parameter t of it (the
+// copy's root is marked filled, not sketched), every point mapped by `move`; stops when h
+// holds max_nodes. Returns the copy's root, or -1 when there was no room.
+int copy_subtree(std::vector<SilhouetteNode>& h, int src, int parent, double t,
+                 const std::function<glm::dvec2(glm::dvec2)>& move, size_t max_nodes);
 
 // Applies the style of node `source` to every other node of the same level that has
 // children (step G on a whole level). Returns the number of branches restyled.

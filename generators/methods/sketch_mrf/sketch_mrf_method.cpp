@@ -4,13 +4,10 @@
 //   synthetic_generations); template = "auto" (argmax of L_c + L_b) or a database name;
 //   keep_omega (true: the template's Omega is kept, 4.6.1), em_iterations, interaction (k_e);
 //   generations (propagation), max_segments, use_crown; tip_radius, pipe_exponent;
-//   leaf_size / leaves_per_tip (default: the template's leaf model), leaf_angle;
-//   ring_sides_min / ring_sides_max; bark_color / leaf_color (default: the template's).
+//   leaf_size / leaves_per_tip (default: the template's leaf model), leaf_angle; plus the
+//   shared look keys (model/look_keys.h).
 #include "generators/methods/sketch_mrf/sketch_mrf_method.h"
 
-#include <fstream>
-
-#include "generators/model/model_builder.h"
 #include "generators/methods/sketch_mrf/sketch_mrf_inference.h"
 #include "generators/methods/sketch_mrf/sketch_propagation.h"
 #include "generators/methods/sketch_mrf/sketch_templates.h"
@@ -34,12 +31,6 @@ int template_key(const TomlTable& t, std::string_view key, const std::string& fa
   return i;
 }
 
-void write_text(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  if (!out) throw InputError(file.string(), 0, "--out", "cannot write file");
-}
-
 }  // namespace
 
 Drawing sketch_mrf_synthetic_drawing(const std::string& template_name, int view, int generations) {
@@ -48,22 +39,19 @@ Drawing sketch_mrf_synthetic_drawing(const std::string& template_name, int view,
   return project_template(sketch_template_database()[size_t(i)], view, generations, true);
 }
 
-TreeModel generate_sketch_mrf(const TomlTable& t, const std::string& species_name,
-                              const GenerateOptions& options) {
-  t.check_keys({"method", "name", "seed", "strokes", "synthetic_template", "synthetic_view",
-                "synthetic_generations", "template", "keep_omega", "em_iterations", "interaction",
-                "generations", "max_segments", "use_crown", "tip_radius", "pipe_exponent",
-                "leaf_size", "leaves_per_tip", "leaf_angle", "ring_sides_min", "ring_sides_max",
-                "bark_color", "leaf_color"});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+namespace {
+
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "strokes", "synthetic_template", "synthetic_view", "synthetic_generations", "template",
+    "keep_omega", "em_iterations", "interaction", "generations", "max_segments", "use_crown",
+    "tip_radius", "pipe_exponent", "leaf_size", "leaves_per_tip", "leaf_angle"};
+
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
 
   Drawing drawing;
   if (t.has("strokes")) {
-    std::filesystem::path file = t.string("strokes");
-    if (file.is_relative()) file = std::filesystem::path(t.file()).parent_path() / file;
-    if (!std::filesystem::exists(file)) t.fail("strokes", "no such file '" + file.string() + "'");
-    drawing = read_drawing(file);
+    drawing = read_drawing(t.existing_file("strokes"));
   } else {
     int ti = template_key(t, "synthetic_template", "broadleaf");
     int view = int(t.integer("synthetic_view", 1, 0, kTemplateViews - 1));
@@ -112,30 +100,18 @@ TreeModel generate_sketch_mrf(const TomlTable& t, const std::string& species_nam
   lp.angle_deg = float(t.number("leaf_angle", 45.0, 0.0, 180.0));
   if (lp.size > 0.0f) place_twig_leaves(graph, lp, seed);
 
-  MesherParams mesher;
-  mesher.min_sides = 3;
-  mesher.max_sides = 8;
-  read_ring_sides(t, mesher);
-
-  ModelDescription d;
-  d.method = "sketch-mrf";
-  d.species = t.string("name", species_name);
-  d.seed = seed;
-  d.parameters = toml_to_json(t.raw());
-  d.bark_color = t.vec3("bark_color", tpl.bark_color, 0.0, 1.0);
-  d.leaf_color = t.vec3("leaf_color", tpl.leaf_color, 0.0, 1.0);
-  TreeModel model = build_tree_model(graph, d, mesher);
-  nlohmann::json& info = model.meta["sketch_mrf"];
+  Skeleton out{std::move(graph)};
+  nlohmann::json& info = out.meta["sketch_mrf"];
   info["template"] = tpl.name;
   info["template_view"] = choice.view;
   info["sketch_segments"] = sketch.xy.size() - 1;
   info["em_iterations"] = inferred.em_iterations;
   info["propagated_segments"] = grown.position.size() - sketch.xy.size();
   info["closed_by_crown"] = grown.closed_by_crown;
-  return model;
+  return out;
 }
 
-const char* sketch_mrf_default_species_text() {
+const char* builtin_preset() {
   return R"toml(method = "sketch-mrf"
 # Built-in preset: a sketch projected in memory from the "broadleaf" template (3 stroke
 # levels and its crown curve), then template choice, depth inference and propagation.
@@ -146,18 +122,26 @@ synthetic_view = 1
 synthetic_generations = 3
 template = "auto"
 generations = 3
+bark_color = [0.20, 0.15, 0.11]
+leaf_color = [0.13, 0.30, 0.05]
 )toml";
 }
 
-void sketch_mrf_make_inputs(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir.string(), 0, "--out", "cannot create folder: " + ec.message());
+// Writes dir/maple.json, dir/pine.json (strokes with ground-truth depths and a crown
+// curve) and dir/maple.svg (the same strokes as SVG polylines).
+void write_inputs(const std::filesystem::path& dir) {
   Drawing maple = sketch_mrf_synthetic_drawing("broadleaf", 1, 3);
-  write_text(dir / "maple.json", drawing_to_json(maple));
-  write_text(dir / "maple.svg", drawing_to_svg(maple));
-  write_text(dir / "pine.json", drawing_to_json(sketch_mrf_synthetic_drawing("conifer", 2, 2)));
-  write_text(dir / "umbrella.json", drawing_to_json(sketch_mrf_synthetic_drawing("umbrella", 3, 3)));
+  Drawing pine = sketch_mrf_synthetic_drawing("conifer", 2, 2);
+  Drawing umbrella = sketch_mrf_synthetic_drawing("umbrella", 3, 3);
+  write_drawing_files(dir, {{"maple.json", drawing_to_json(maple)},
+                            {"maple.svg", drawing_to_svg(maple)},
+                            {"pine.json", drawing_to_json(pine)},
+                            {"umbrella.json", drawing_to_json(umbrella)}});
 }
+
+}  // namespace
+
+constinit const MethodEntry kSketchMrfMethod{"sketch-mrf", kKeys, skeleton_pass, builtin_preset,
+                                             write_inputs};
 
 }  // namespace forest

@@ -12,12 +12,8 @@
 
 namespace forest {
 
-TreeModel generate_sketch_mrf(const TomlTable& species, const std::string& species_name,
-                              const GenerateOptions& options);
-const char* sketch_mrf_default_species_text();
-// Writes dir/maple.json, dir/pine.json (strokes with ground-truth depths and a crown
-// curve) and dir/maple.svg (the same strokes as SVG polylines).
-void sketch_mrf_make_inputs(const std::filesystem::path& dir);
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kSketchMrfMethod;
 
 // The synthetic sketches: template `name` seen from `view`, `generations` stroke levels.
 Drawing sketch_mrf_synthetic_drawing(const std::string& template_name, int view, int generations);

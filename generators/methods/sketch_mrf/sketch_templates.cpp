@@ -20,7 +20,6 @@ struct TemplateRecipe {
   uint64_t seed;
   float leaf_size;
   int leaves_per_tip;
-  glm::vec3 leaf_color, bark_color;
 };
 
 TurtleParams turtle(float angle, float step, float length_scale, float tropism, float roll) {
@@ -41,15 +40,15 @@ std::vector<TemplateRecipe> recipes() {
   return {
       {"broadleaf", "F(1.6)/(45)F(1.0)![&FA]/(94.74)[&FA]/(132.63)[&FA]",
        {{'A', "![&FA]/(94.74)[&FA]/(132.63)[&FA]", 0.3}, {'A', "!/(137.5)[&FA][^(10)FA]", 0.7}},
-       4, turtle(30.0f, 1.6f, 0.78f, 0.14f, 25.0f), 11, 0.32f, 5, {0.13f, 0.30f, 0.05f}, {0.20f, 0.15f, 0.11f}},
+       4, turtle(30.0f, 1.6f, 0.78f, 0.14f, 25.0f), 11, 0.32f, 5},
       {"conifer", "F(1.8)A",
        {{'A', "F/(37)[&(78)B]/(90)[&(78)B]/(90)[&(78)B]/(90)[&(78)B]!A", 1.0},
         {'B', "F(0.42)[+C]/(180)B", 1.0}, {'C', "F(0.35)C", 0.5}, {'C', "C", 0.5}},
-       8, turtle(50.0f, 1.0f, 0.95f, 0.10f, 10.0f), 5, 0.45f, 3, {0.05f, 0.16f, 0.06f}, {0.17f, 0.11f, 0.08f}},
+       8, turtle(50.0f, 1.0f, 0.95f, 0.10f, 10.0f), 5, 0.45f, 3},
       {"fig2_1", "X", {{'X', "F[[X]-X]F[+FX]-X", 1.0}, {'F', "FF", 1.0}},
-       4, turtle(22.5f, 0.4f, 0.9f, 0.0f, 180.0f), 1, 0.15f, 2, {0.14f, 0.32f, 0.06f}, {0.22f, 0.16f, 0.10f}},
+       4, turtle(22.5f, 0.4f, 0.9f, 0.0f, 180.0f), 1, 0.15f, 2},
       {"umbrella", "F(3.0)A", {{'A', "!/(90)[&(55)FA][^(55)FA]", 1.0}},
-       5, turtle(55.0f, 1.4f, 0.8f, 0.0f, 20.0f), 7, 0.3f, 4, {0.16f, 0.34f, 0.08f}, {0.24f, 0.18f, 0.12f}},
+       5, turtle(55.0f, 1.4f, 0.8f, 0.0f, 20.0f), 7, 0.3f, 4},
   };
 }
 
@@ -104,8 +103,6 @@ SketchTemplate build(const TemplateRecipe& r) {
   t.name = r.name;
   t.leaf_size = r.leaf_size;
   t.leaves_per_tip = r.leaves_per_tip;
-  t.leaf_color = r.leaf_color;
-  t.bark_color = r.bark_color;
   // Keep the root, the branch points and the tips; chains between them become segments.
   std::vector<int> kept_index(g.nodes.size(), -1), nearest_kept(g.nodes.size(), -1);
   for (size_t i = 0; i < g.nodes.size(); ++i) {

@@ -41,8 +41,6 @@ struct SketchTemplate {
   std::vector<TemplateView> views;
   float leaf_size = 0.2f;         // the template's leaf model
   int leaves_per_tip = 3;
-  glm::vec3 leaf_color{0.15f, 0.32f, 0.07f};
-  glm::vec3 bark_color{0.22f, 0.16f, 0.11f};
 };
 
 const std::vector<SketchTemplate>& sketch_template_database();

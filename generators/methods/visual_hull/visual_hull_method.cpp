@@ -10,13 +10,15 @@
 
 namespace forest {
 
-TreeModel generate_visual_hull(const TomlTable& t, const std::string& species_name,
-                               const GenerateOptions& options) {
-  check_image_species_keys(t, {"voxels", "tips_per_view", "extra_branches", "years", "internode",
-                               "branch_angle", "regrow_factor", "tropism", "jitter", "starve",
-                               "fill_target", "max_nodes"});
-  t.string("name", "");
-  uint64_t seed = options.seed.value_or(uint64_t(t.integer("seed", 1, 0, int64_t(1) << 53)));
+namespace {
+
+// The method's own species keys; the registry adds the common and the look keys.
+constexpr std::string_view kKeys[] = {
+    "voxels", "tips_per_view", "extra_branches", "years", "internode", "branch_angle",
+    "regrow_factor", "tropism", "jitter", "starve", "fill_target", "max_nodes",
+    FOREST_IMAGE_SPECIES_KEYS};
+
+Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   SkeletonParams sp;
   sp.voxels = int(t.integer("voxels", sp.voxels, 8, 128));
   sp.tips_per_view = int(t.integer("tips_per_view", sp.tips_per_view, 0, 64));
@@ -31,12 +33,8 @@ TreeModel generate_visual_hull(const TomlTable& t, const std::string& species_na
   gp.starve = t.number("starve", gp.starve, 0.0, 1.0);
   gp.fill_target = t.number("fill_target", gp.fill_target, 0.0, 1.0);
   gp.max_nodes = size_t(t.integer("max_nodes", int64_t(gp.max_nodes), 100, 500000));
-  TreeLook look;
-  look.tip_radius = 0.006f;
-  look.pipe_exponent = 2.4f;
-  look.leaves.size = 0.12f;
-  look.leaves.along = 1;
-  look = read_tree_look(t, look);
+  const ImageTreeStyle style = read_image_tree_style(
+      t, {.tip_radius = 0.006f, .pipe_exponent = 2.4f, .leaves = {.size = 0.12f, .along = 1}});
   ViewSet views = read_image_input(t);
 
   gp.internode = internode > 0.0 ? internode : 0.035 * views.bounds.size().y;
@@ -58,10 +56,11 @@ TreeModel generate_visual_hull(const TomlTable& t, const std::string& species_na
   for (const YearReport& r : reports) pruned += r.pruned;
   stats["pruned"] = pruned;
   stats["fill"] = reports.empty() ? 0.0 : reports.back().fill;
-  return finish_image_tree(std::move(graph), look, views, t, "visual-hull", species_name, seed, stats);
+  return finish_image_tree(std::move(graph), style, views, seed, std::move(stats));
 }
 
-const char* visual_hull_default_species_text() {
+// Built-in preset: a synthetic lobed crown rendered into 8 perspective masks in memory.
+const char* builtin_preset() {
   return R"toml(method = "visual-hull"
 # Seed 003 (Shlyakhter et al. 2001): a trunk and four ellipsoid crown lobes seen by 8
 # pinhole cameras on a circle, masks rendered in memory; hull -> skeleton -> L-system.
@@ -74,22 +73,19 @@ leaves_along = 1
 )toml";
 }
 
-void visual_hull_make_inputs(const std::filesystem::path& dir) {
-  CrownSpec ellipsoid;
-  ellipsoid.shape = "ellipsoid";
-  ellipsoid.height = 9.0;
-  ellipsoid.width = 7.0;
-  ellipsoid.depth = 5.0;
-  ellipsoid.views = 8;
-  ellipsoid.perspective = true;
+// dir/ellipsoid and dir/cone: views.json + 8 perspective 128x128 masks each.
+void write_inputs(const std::filesystem::path& dir) {
+  const CrownSpec ellipsoid{.shape = "ellipsoid", .height = 9.0, .width = 7.0, .depth = 5.0,
+                            .views = 8, .perspective = true};
+  const CrownSpec cone{.shape = "cone", .height = 12.0, .width = 5.0, .depth = 5.0,
+                       .trunk_height = 1.5, .views = 8, .perspective = true};
   write_view_set(synthesize_view_set(ellipsoid), dir / "ellipsoid");
-  CrownSpec cone = ellipsoid;
-  cone.shape = "cone";
-  cone.height = 12.0;
-  cone.width = 5.0;
-  cone.depth = 5.0;
-  cone.trunk_height = 1.5;
   write_view_set(synthesize_view_set(cone), dir / "cone");
 }
+
+}  // namespace
+
+constinit const MethodEntry kVisualHullMethod{"visual-hull", kKeys, skeleton_pass, builtin_preset,
+                                              write_inputs};
 
 }  // namespace forest

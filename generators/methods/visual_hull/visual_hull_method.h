@@ -2,19 +2,11 @@
 // visual hull -> skeleton from the hull's medial axis -> open L-system grown and pruned
 // inside the hull -> leaves (dropped where they project onto background) -> mesh.
 #pragma once
-#include <filesystem>
-#include <string>
-
-#include "generators/core/toml_reader.h"
 #include "generators/species/registry.h"
 
 namespace forest {
 
-TreeModel generate_visual_hull(const TomlTable& root, const std::string& species_name,
-                               const GenerateOptions& options);
-// Built-in preset: a synthetic lobed crown rendered into 8 perspective masks in memory.
-const char* visual_hull_default_species_text();
-// dir/ellipsoid and dir/cone: views.json + 8 perspective 128x128 masks each.
-void visual_hull_make_inputs(const std::filesystem::path& dir);
+// The method's registry entry (species keys, skeleton pass, built-in preset, inputs).
+extern const MethodEntry kVisualHullMethod;
 
 }  // namespace forest

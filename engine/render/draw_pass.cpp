@@ -1,0 +1,167 @@
+#include "engine/render/draw_pass.h"
+
+#include "engine/vk/pipelines.h"
+
+namespace forest {
+
+namespace {
+
+DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples, bool wire) {
+  vk::GraphicsPipelineDesc d;
+  d.color_format = kColorFormat;
+  d.depth_format = kDepthFormat;
+  d.samples = samples;
+  if (wire) {
+    d.polygon_mode = VK_POLYGON_MODE_LINE;
+    d.cull = VK_CULL_MODE_NONE;
+  }
+  DrawPipelines p;
+  if (!wire) {  // the sky has no wire variant
+    vk::GraphicsPipelineDesc sky = d;
+    sky.vertex = "sky_vert";
+    sky.fragment = "sky_frag";
+    sky.vertex_input = false;
+    sky.cull = VK_CULL_MODE_NONE;
+    sky.depth_test = false;
+    sky.depth_write = false;
+    p.sky = vk::create_graphics_pipeline(ctx, layout, sky);
+  }
+  vk::GraphicsPipelineDesc terrain = d;
+  terrain.vertex = "terrain_vert";
+  terrain.fragment = "terrain_frag";
+  p.terrain = vk::create_graphics_pipeline(ctx, layout, terrain);
+  vk::GraphicsPipelineDesc branches = d;
+  branches.vertex = "branch_vert";
+  branches.fragment = "tree_frag";
+  p.branches = vk::create_graphics_pipeline(ctx, layout, branches);
+  vk::GraphicsPipelineDesc leaves = branches;
+  leaves.vertex = "leaf_vert";
+  if (!wire) {
+    leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
+    leaves.alpha_to_coverage = samples > VK_SAMPLE_COUNT_1_BIT;
+    leaves.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_ALPHA_TO_COVERAGE, leaves.alpha_to_coverage ? 1u : 0u}};
+    // The leaf's (sharpened) alpha is coverage, not opacity: written to the attachment it
+    // made the resolved frame translucent at every leaf edge, and a PNG viewer showed its page
+    // background (white) through the crowns. The sky underneath already wrote alpha 1.
+    leaves.write_alpha = false;
+  }
+  p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
+  return p;
+}
+
+void destroy_pipelines(vk::Context& ctx, DrawPipelines& p) {
+  for (VkPipeline pipeline : {p.sky, p.terrain, p.branches, p.leaves}) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  p = {};
+}
+
+// The targets become attachments; also after the previous frame's pyramid reads of the
+// depth (compute) and the copies out of the colour image (transfer).
+void begin_targets(VkCommandBuffer cmd, const RenderTargets& t) {
+  vk::image_barrier(cmd, t.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  if (t.color_msaa.image)
+    vk::image_barrier(cmd, t.color_msaa.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  const VkPipelineStageFlags2 tests =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  for (VkImage image : {t.depth.image, t.depth_resolve.image})
+    if (image)
+      vk::image_barrier(cmd, image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                        tests | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                        tests | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+}
+
+void begin_rendering(VkCommandBuffer cmd, const RenderTargets& t, const DrawList& list) {
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = t.color.view;
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  // With a background the sky covers every pixel.
+  color.loadOp = list.background ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // opaque: leaves write no alpha
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  if (t.color_msaa.image) {  // render multisampled, resolve (average) into the single-sample image
+    color.imageView = t.color_msaa.view;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    color.resolveImageView = t.color.view;
+    color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = t.depth.view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  // Kept when the depth pyramid reads it (single-sampled), else resolved into depth_resolve.
+  depth.storeOp = list.keep_depth && !t.depth_resolve.image ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {0.0f, 0};  // reversed Z: 0 is infinitely far
+  if (t.depth_resolve.image) {
+    depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+    depth.resolveImageView = t.depth_resolve.view;
+    depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  }
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, t.extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport viewport{0.0f, 0.0f, float(t.extent.width), float(t.extent.height), 0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, t.extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+}  // namespace
+
+DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples) {
+  DrawPass p;
+  p.fill = create_pipelines(ctx, layout, samples, false);
+  if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true);
+  return p;
+}
+
+void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
+  destroy_pipelines(ctx, p.fill);
+  destroy_pipelines(ctx, p.wire);
+}
+
+void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
+                      const SceneBuffers& scene, const CullPass& cull, const RenderTargets& targets, const DrawList& list) {
+  const DrawPipelines& p = list.wireframe ? pass.wire : pass.fill;
+  begin_targets(cmd, targets);
+  begin_rendering(cmd, targets, list);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+  VkDeviceSize zero = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &scene.vertices.buffer, &zero);
+  vkCmdBindIndexBuffer(cmd, scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+  if (list.background) {  // the sky is filled in the wireframe view too
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.fill.sky);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.terrain);
+    vkCmdDrawIndexed(cmd, scene.terrain_index_count, 1, 0, 0, 0);
+  }
+  const uint32_t n = cull.instance_count, stride = sizeof(gpu::DrawCommand);
+  if (n > 0 && list.branches) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.branches);
+    vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, 0, cull.counts.buffer,
+                                  offsetof(gpu::DrawCounts, branch_draws), n, stride);
+  }
+  if (n > 0 && list.leaves) {  // up to two leaf draws per tree: the prefix and the occlusion tail
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.leaves);
+    vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(n) * stride, cull.counts.buffer,
+                                  offsetof(gpu::DrawCounts, leaf_draws), 2 * n, stride);
+  }
+  vkCmdEndRendering(cmd);
+}
+
+}  // namespace forest

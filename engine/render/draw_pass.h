@@ -1,0 +1,48 @@
+// The draw pass: sky, terrain, then the cull pass's indirect draws of bark (branch.vert) and
+// leaf cards (leaf.vert), shaded by tree.frag, into the render targets. One recording path
+// for every picture the renderer makes: frames, PR coverage references and batched PR bakes
+// (coverage masks draw only trees, white, through the same pipelines).
+#pragma once
+#include <cstdint>
+
+#include "engine/render/cull_pass.h"
+#include "engine/render/render_targets.h"
+#include "engine/render/scene_buffers.h"
+
+namespace forest {
+
+struct DrawPipelines {
+  VkPipeline sky = VK_NULL_HANDLE, terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE, leaves = VK_NULL_HANDLE;
+};
+
+struct DrawPass {
+  DrawPipelines fill;
+  DrawPipelines wire;  // edges only; null where the device lacks fillModeNonSolid
+};
+
+inline constexpr Binding kDrawBindings[] = {
+    {BINDING_COMMANDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
+    {BINDING_TAIL_LEAVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
+    {BINDING_LEAF_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+};
+
+DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples);
+void destroy_draw_pass(vk::Context& ctx, DrawPass& pass);
+
+// What one recording draws.
+struct DrawList {
+  bool background = true;  // sky and terrain (false: coverage, cleared to black)
+  bool branches = true;
+  bool leaves = true;
+  bool wireframe = false;   // the wire pipelines (must exist)
+  bool keep_depth = false;  // store the depth (or its resolve) for the depth pyramid
+};
+
+// Records the draw (set 0 bound to the graphics bind point by the caller). Before: the cull
+// pass's writes are visible to indirect and vertex reads. After: the colour image is in
+// COLOR_ATTACHMENT_OPTIMAL with its writes done at COLOR_ATTACHMENT_OUTPUT; depth likewise
+// at the fragment tests.
+void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
+                      const SceneBuffers& scene, const CullPass& cull, const RenderTargets& targets, const DrawList& list);
+
+}  // namespace forest

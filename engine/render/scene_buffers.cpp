@@ -1,0 +1,148 @@
+#include "engine/render/scene_buffers.h"
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "engine/occlusion/occlusion_samples.h"
+#include "engine/render/leaf_textures.h"
+#include "generators/asset/pr_tables.h"
+
+namespace forest {
+
+namespace {
+
+struct SceneArrays {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+  std::vector<gpu::Model> models;
+  std::vector<gpu::Leaf> leaves;
+  std::vector<float> tables;
+  std::vector<gpu::HullSample> hull_samples;
+
+  // Appends a mesh to the global vertex/index arrays; returns (first index, vertex offset).
+  std::pair<uint32_t, int32_t> append(const Mesh& mesh) {
+    std::pair<uint32_t, int32_t> at{uint32_t(indices.size()), int32_t(vertices.size())};
+    vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    return at;
+  }
+};
+
+// Branch LOD chain: LOD0 then the simplified levels, at most MAX_BRANCH_LODS, errors
+// non-decreasing.
+void add_branch_lods(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
+  std::vector<std::pair<const Mesh*, float>> lods{{&tm.branches, 0.0f}};
+  for (const MeshLod& l : tm.branch_lods)
+    if (lods.size() < MAX_BRANCH_LODS && !l.mesh.indices.empty())
+      lods.push_back({&l.mesh, std::max(l.error, lods.back().second)});
+  m.lod_count = uint32_t(lods.size());
+  for (uint32_t k = 0; k < m.lod_count; ++k) {
+    auto [first, offset] = a.append(*lods[k].first);
+    m.lod_first_index[k] = first;
+    m.lod_index_count[k] = uint32_t(lods[k].first->indices.size());
+    m.lod_vertex_offset[k] = offset;
+    m.lod_error[k] = lods[k].second;
+  }
+}
+
+void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
+  auto [cf, cv] = a.append(tm.leaf_card);
+  m.card_first_index = cf;
+  m.card_index_count = uint32_t(tm.leaf_card.indices.size());
+  m.card_vertex_offset = cv;
+  for (const Vertex& v : tm.leaf_card.vertices) m.card_radius = std::max(m.card_radius, glm::length(v.position));
+  m.leaf_offset = uint32_t(a.leaves.size());
+  m.leaf_count = tm.leaf_card.indices.empty() ? 0 : uint32_t(tm.leaves.size());
+  for (const LeafPlacement& l : tm.leaves)
+    a.leaves.push_back({glm::vec4(l.position, l.scale), glm::vec4(l.rotation.x, l.rotation.y, l.rotation.z, l.rotation.w),
+                        glm::vec4(l.color, 1.0f)});
+}
+
+void add_bake_data(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
+  if (const std::optional<PrTables>& t = tm.bake.pr_tables) {
+    // Validated when the asset was read; sizes checked again here as they bound GPU reads.
+    if (t->s_opt.size() != S_SAMPLES || t->lambda_opt.size() != D_SAMPLES)
+      throw std::invalid_argument("upload_scene: PR tables of " + std::to_string(t->s_opt.size()) + " s_opt and " +
+                                  std::to_string(t->lambda_opt.size()) + " lambda_opt values");
+    m.has_tables = 1;
+    m.table_offset = uint32_t(a.tables.size());
+    a.tables.insert(a.tables.end(), t->s_opt.begin(), t->s_opt.end());
+    a.tables.insert(a.tables.end(), t->lambda_opt.begin(), t->lambda_opt.end());
+  }
+  OcclusionSamples occ = occlusion_samples(tm);
+  m.sample_offset = uint32_t(a.hull_samples.size());
+  m.sample_count = uint32_t(occ.samples.size());
+  m.occlusion_margin = occ.margin;
+  a.hull_samples.insert(a.hull_samples.end(), occ.samples.begin(), occ.samples.end());
+}
+
+VkSampler create_leaf_sampler(vk::Context& ctx) {
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.maxLod = VK_LOD_CLAMP_NONE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateSampler(ctx.device, &sci, nullptr, &sampler));
+  return sampler;
+}
+
+}  // namespace
+
+SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
+  SceneBuffers b;
+  SceneArrays a;
+  Mesh terrain = scene.terrain.mesh();
+  a.append(terrain);
+  b.terrain_index_count = uint32_t(terrain.indices.size());
+  for (const TreeModel& tm : scene.models) {
+    gpu::Model m{};
+    m.bounding_sphere = tm.bounding_sphere;
+    m.bark_color = glm::vec4(tm.bark_color, 1.0f);
+    m.leaf_color = glm::vec4(tm.leaf_color, 1.0f);
+    m.leaf_texture_layer = uint32_t(a.models.size());
+    add_branch_lods(a, tm, m);
+    add_foliage(a, tm, m);
+    add_bake_data(a, tm, m);
+    a.models.push_back(m);
+  }
+  b.instance_count = uint32_t(scene.instances.size());
+  for (const gpu::Instance& inst : scene.instances) b.instance_leaves += scene.models[inst.model].leaves.size();
+
+  std::vector<const Image8*> textures;
+  for (const TreeModel& tm : scene.models) textures.push_back(&tm.leaf_texture);
+  TextureArrayData tex = build_leaf_texture_array(textures, LEAF_TEXTURE_SIZE);
+  b.leaf_textures = vk::create_texture_array(ctx, tex.size, tex.layers, tex.mips, VK_FORMAT_R8G8B8A8_SRGB, tex.texels);
+  b.leaf_sampler = create_leaf_sampler(ctx);
+
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  b.vertices = vk::create_buffer_from<Vertex>(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, a.vertices);
+  b.indices = vk::create_buffer_from<uint32_t>(ctx, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, a.indices);
+  b.instances = vk::create_buffer_from<gpu::Instance>(ctx, storage, scene.instances);
+  b.models = vk::create_buffer_from<gpu::Model>(ctx, storage, a.models);
+  b.leaves = vk::create_buffer_from<gpu::Leaf>(ctx, storage, a.leaves);
+  b.prune_tables = vk::create_buffer_from<float>(ctx, storage, a.tables);
+  b.hull_samples = vk::create_buffer_from<gpu::HullSample>(ctx, storage, a.hull_samples);
+  return b;
+}
+
+void destroy_scene_buffers(vk::Context& ctx, SceneBuffers& b) {
+  for (vk::Buffer* buffer : {&b.vertices, &b.indices, &b.instances, &b.models, &b.leaves, &b.prune_tables, &b.hull_samples})
+    vk::destroy_buffer(ctx, *buffer);
+  vk::destroy_image(ctx, b.leaf_textures);
+  vkDestroySampler(ctx.device, b.leaf_sampler, nullptr);
+  b = {};
+}
+
+void write_scene_bindings(DescriptorWrites& w, const SceneBuffers& b) {
+  w.buffer(BINDING_INSTANCES, b.instances)
+      .buffer(BINDING_MODELS, b.models)
+      .buffer(BINDING_LEAVES, b.leaves)
+      .buffer(BINDING_PRUNE_TABLES, b.prune_tables)
+      .buffer(BINDING_HULL_SAMPLES, b.hull_samples)
+      .image(BINDING_LEAF_TEXTURES, b.leaf_sampler, b.leaf_textures.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+}  // namespace forest

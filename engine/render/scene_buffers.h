@@ -1,0 +1,43 @@
+// The scene on the GPU, uploaded once: one vertex and index buffer for the terrain and every
+// model's branch LODs and leaf card, the instances, the models, their leaves in priority
+// order, their PR tables, their occlusion samples and the leaf texture array. Nothing here
+// changes per frame; these are the bindings shaders/common.glsl declares for every stage.
+#pragma once
+#include <cstdint>
+
+#include "engine/render/descriptor_table.h"
+#include "engine/scene/scene.h"
+#include "gpu_types.h"
+
+namespace forest {
+
+struct SceneBuffers {
+  vk::Buffer vertices, indices;  // forest::Vertex, uint32 triangle lists
+  vk::Buffer instances, models, leaves, prune_tables, hull_samples;
+  vk::Image leaf_textures;  // one layer per model
+  VkSampler leaf_sampler = VK_NULL_HANDLE;
+  uint32_t instance_count = 0;
+  uint32_t terrain_index_count = 0;  // the terrain is the first mesh of `indices`
+  uint64_t instance_leaves = 0;      // Σ over instances of its model's leaf count
+};
+
+inline constexpr VkShaderStageFlags kAllStages =
+    VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+// The frame constants (per frame in flight) and the scene's buffers: what every pass reads.
+inline constexpr Binding kSceneBindings[] = {
+    {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAllStages},
+    {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages},
+    {BINDING_MODELS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages},
+    {BINDING_LEAVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages},
+    {BINDING_PRUNE_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages},
+    {BINDING_HULL_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {BINDING_LEAF_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+};
+
+SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene);
+void destroy_scene_buffers(vk::Context& ctx, SceneBuffers& buffers);
+// Every binding of kSceneBindings except BINDING_FRAME.
+void write_scene_bindings(DescriptorWrites& writes, const SceneBuffers& buffers);
+
+}  // namespace forest

@@ -1,0 +1,283 @@
+// TreeModel -> glTF 2.0 binary (encode_glb) through tinygltf. Layout of an asset:
+//   scene 0 -> node "tree" -> children "branches" (mesh "branches", material "bark")
+//                                      "leaves"   (mesh "leaf_card", material "leaf",
+//                                                  EXT_mesh_gpu_instancing T/R/S accessors
+//                                                  and _COLOR: per-leaf color multiplier)
+//   nodes "branches_lod1", "branches_lod2", ... (meshes of the same names, material "bark",
+//     mesh extras {"forest_lod": {"level": i, "error": meters}}): the simplified branch LODs.
+//     They are not in the scene, so a generic viewer shows LOD0 only; decode_glb finds them
+//     by their extras.
+//   node "hull" (mesh "hull", material "hull"): the metaball hull of a baked model, not in
+//     the scene
+//   material "leaf": baseColorTexture = the leaf texture (PNG in the binary chunk),
+//     alphaMode MASK, alphaCutoff 0.5 (glTF's default, so tinygltf writes it implicitly),
+//     double sided
+//   root extras.forest = TreeModel::meta plus TreeModel::bake (bake_to_json, bake_data.cpp)
+// One buffer, one tightly packed buffer view per accessor (so no byteStride anywhere).
+#include "generators/asset/asset_io.h"
+
+#include <stb/stb_image_write.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "generators/asset/bake_data.h"
+
+namespace forest {
+
+namespace {
+
+constexpr const char* kInstancing = "EXT_mesh_gpu_instancing";
+
+// JSON -> tinygltf::Value (extras).
+tinygltf::Value to_value(const nlohmann::json& j) {
+  using V = tinygltf::Value;
+  switch (j.type()) {
+    case nlohmann::json::value_t::object: {
+      V::Object o;
+      for (auto it = j.begin(); it != j.end(); ++it) o.emplace(it.key(), to_value(it.value()));
+      return V(std::move(o));
+    }
+    case nlohmann::json::value_t::array: {
+      V::Array a;
+      for (const auto& e : j) a.push_back(to_value(e));
+      return V(std::move(a));
+    }
+    case nlohmann::json::value_t::string: return V(j.get<std::string>());
+    case nlohmann::json::value_t::boolean: return V(j.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+    case nlohmann::json::value_t::number_unsigned: {
+      // tinygltf integers are 32-bit; larger ones travel as doubles (exact up to 2^53).
+      if (j.is_number_unsigned()) {
+        uint64_t u = j.get<uint64_t>();
+        if (u <= uint64_t(std::numeric_limits<int>::max())) return V(int(u));
+        return V(double(u));
+      }
+      int64_t i = j.get<int64_t>();
+      if (i >= std::numeric_limits<int>::min() && i <= std::numeric_limits<int>::max())
+        return V(int(i));
+      return V(double(i));
+    }
+    case nlohmann::json::value_t::number_float: return V(j.get<double>());
+    default: return V();
+  }
+}
+
+struct Writer {
+  tinygltf::Model model;
+  std::vector<unsigned char> bin;
+
+  // Appends a tightly packed buffer view, 4-byte aligned. target 0: none (instancing data).
+  int add_view(const void* data, size_t bytes, int target) {
+    while (bin.size() % 4) bin.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = bin.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    bin.insert(bin.end(), p, p + bytes);
+    model.bufferViews.push_back(view);
+    return int(model.bufferViews.size() - 1);
+  }
+
+  // Float accessor of `comps` components per element (type VEC2/VEC3/VEC4).
+  int add_floats(const std::vector<float>& values, int comps, int target, bool with_bounds) {
+    tinygltf::Accessor a;
+    a.bufferView = add_view(values.data(), values.size() * sizeof(float), target);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.count = values.size() / size_t(comps);
+    a.type = comps == 2 ? TINYGLTF_TYPE_VEC2 : comps == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+    if (with_bounds) {  // exact float extrema, as the validator checks them
+      a.minValues.assign(size_t(comps), std::numeric_limits<double>::infinity());
+      a.maxValues.assign(size_t(comps), -std::numeric_limits<double>::infinity());
+      for (size_t i = 0; i < values.size(); ++i) {
+        size_t c = i % size_t(comps);
+        a.minValues[c] = std::min(a.minValues[c], double(values[i]));
+        a.maxValues[c] = std::max(a.maxValues[c], double(values[i]));
+      }
+    }
+    model.accessors.push_back(a);
+    return int(model.accessors.size() - 1);
+  }
+
+  int add_indices(const std::vector<uint32_t>& indices) {
+    tinygltf::Accessor a;
+    a.bufferView = add_view(indices.data(), indices.size() * sizeof(uint32_t),
+                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.count = indices.size();
+    a.type = TINYGLTF_TYPE_SCALAR;
+    model.accessors.push_back(a);
+    return int(model.accessors.size() - 1);
+  }
+
+  // texture < 0: untextured and opaque; else alpha-masked with that base color texture.
+  int add_material(const std::string& name, glm::vec3 color, bool double_sided, int texture = -1) {
+    tinygltf::Material m;
+    m.name = name;
+    m.pbrMetallicRoughness.baseColorFactor = {color.r, color.g, color.b, 1.0};
+    m.pbrMetallicRoughness.metallicFactor = 0.0;
+    m.pbrMetallicRoughness.roughnessFactor = 1.0;
+    m.doubleSided = double_sided;
+    if (texture >= 0) {
+      m.pbrMetallicRoughness.baseColorTexture.index = texture;
+      m.alphaMode = "MASK";
+      m.alphaCutoff = 0.5;
+    }
+    model.materials.push_back(m);
+    return int(model.materials.size() - 1);
+  }
+
+  // An RGBA8 image as a PNG in the binary chunk, with a trilinear, clamped sampler.
+  int add_texture(const std::string& name, const Image8& img) {
+    std::vector<unsigned char> png;
+    auto sink = [](void* ctx, void* data, int size) {
+      auto* out = static_cast<std::vector<unsigned char>*>(ctx);
+      const auto* p = static_cast<const unsigned char*>(data);
+      out->insert(out->end(), p, p + size);
+    };
+    if (!stbi_write_png_to_func(sink, &png, int(img.width), int(img.height), 4, img.rgba.data(),
+                                int(img.width) * 4))
+      throw std::runtime_error("cannot encode the " + name + " texture as PNG");
+    tinygltf::Image image;
+    image.name = name;
+    image.mimeType = "image/png";
+    image.bufferView = add_view(png.data(), png.size(), 0);
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    model.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.name = name;
+    texture.sampler = int(model.samplers.size() - 1);
+    texture.source = int(model.images.size() - 1);
+    model.textures.push_back(texture);
+    return int(model.textures.size() - 1);
+  }
+
+  int add_mesh(const std::string& name, const Mesh& mesh, int material) {
+    std::vector<float> pos, nrm, uv;
+    for (const Vertex& v : mesh.vertices) {
+      pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
+      glm::vec3 n = glm::length(v.normal) > 0.0f ? glm::normalize(v.normal) : glm::vec3(0, 1, 0);
+      nrm.insert(nrm.end(), {n.x, n.y, n.z});
+      uv.insert(uv.end(), {v.uv.x, v.uv.y});
+    }
+    tinygltf::Primitive prim;
+    prim.attributes["POSITION"] = add_floats(pos, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    prim.attributes["NORMAL"] = add_floats(nrm, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    prim.attributes["TEXCOORD_0"] = add_floats(uv, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    prim.indices = add_indices(mesh.indices);
+    prim.material = material;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    tinygltf::Mesh m;
+    m.name = name;
+    m.primitives.push_back(prim);
+    model.meshes.push_back(m);
+    return int(model.meshes.size() - 1);
+  }
+};
+
+bool drawable(const Mesh& m) { return !m.vertices.empty() && !m.indices.empty(); }
+
+}  // namespace
+
+std::vector<uint8_t> encode_glb(const TreeModel& tree) {
+  Writer w;
+  tinygltf::Model& m = w.model;
+  m.asset.version = "2.0";
+  m.asset.generator = "forest";
+
+  tinygltf::Node root;
+  root.name = "tree";
+  tinygltf::Node branches;
+  branches.name = "branches";
+  int bark = -1;
+  if (drawable(tree.branches)) {
+    bark = w.add_material("bark", tree.bark_color, false);
+    branches.mesh = w.add_mesh("branches", tree.branches, bark);
+  }
+  m.nodes.push_back(root);
+  m.nodes.push_back(branches);
+  m.nodes[0].children.push_back(1);
+
+  if (!tree.leaves.empty() && drawable(tree.leaf_card)) {
+    tinygltf::Node leaves;
+    leaves.name = "leaves";
+    int texture = tree.leaf_texture.rgba.empty() ? -1 : w.add_texture("leaf", tree.leaf_texture);
+    leaves.mesh = w.add_mesh("leaf_card", tree.leaf_card, w.add_material("leaf", tree.leaf_color, true, texture));
+    std::vector<float> t, r, s, c;
+    for (const LeafPlacement& l : tree.leaves) {
+      t.insert(t.end(), {l.position.x, l.position.y, l.position.z});
+      glm::quat q = glm::normalize(l.rotation);
+      r.insert(r.end(), {q.x, q.y, q.z, q.w});
+      s.insert(s.end(), {l.scale, l.scale, l.scale});
+      c.insert(c.end(), {l.color.r, l.color.g, l.color.b});
+    }
+    tinygltf::Value::Object attrs;
+    attrs["TRANSLATION"] = tinygltf::Value(w.add_floats(t, 3, 0, false));
+    attrs["ROTATION"] = tinygltf::Value(w.add_floats(r, 4, 0, false));
+    attrs["SCALE"] = tinygltf::Value(w.add_floats(s, 3, 0, false));
+    attrs["_COLOR"] = tinygltf::Value(w.add_floats(c, 3, 0, false));
+    tinygltf::Value::Object ext;
+    ext["attributes"] = tinygltf::Value(std::move(attrs));
+    leaves.extensions[kInstancing] = tinygltf::Value(std::move(ext));
+    m.nodes.push_back(leaves);
+    m.nodes[0].children.push_back(int(m.nodes.size() - 1));
+    m.extensionsUsed.push_back(kInstancing);
+  }
+
+  for (size_t i = 0; i < tree.branch_lods.size(); ++i) {
+    const MeshLod& lod = tree.branch_lods[i];
+    if (!drawable(lod.mesh)) continue;
+    if (bark < 0) bark = w.add_material("bark", tree.bark_color, false);
+    std::string name = "branches_lod" + std::to_string(i + 1);
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = w.add_mesh(name, lod.mesh, bark);
+    m.meshes[size_t(node.mesh)].extras = to_value(
+        nlohmann::json{{"forest_lod", {{"level", i + 1}, {"error", lod.error}}}});
+    m.nodes.push_back(node);
+  }
+
+  // The metaball hull (bake); its occlusion samples travel in extras.forest (bake_to_json).
+  if (drawable(tree.hull)) {
+    tinygltf::Node hull;
+    hull.name = "hull";
+    hull.mesh = w.add_mesh("hull", tree.hull, w.add_material("hull", glm::vec3(0.5f), false));
+    m.nodes.push_back(hull);
+  }
+
+  tinygltf::Scene scene;
+  scene.name = "forest";
+  scene.nodes.push_back(0);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+
+  while (w.bin.size() % 4) w.bin.push_back(0);
+  tinygltf::Buffer buffer;
+  buffer.data = std::move(w.bin);
+  m.buffers.push_back(std::move(buffer));
+
+  nlohmann::json forest = tree.meta;
+  bake_to_json(tree.bake, forest);
+  tinygltf::Value::Object extras;
+  extras["forest"] = to_value(forest);
+  m.extras = tinygltf::Value(std::move(extras));
+
+  tinygltf::TinyGLTF gltf;
+  std::ostringstream out;
+  if (!gltf.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true))
+    throw std::runtime_error("tinygltf failed to serialize the asset");
+  std::string bytes = out.str();
+  return std::vector<uint8_t>(bytes.begin(), bytes.end());
+}
+
+}  // namespace forest
