@@ -1,4 +1,4 @@
-// Branch mesh optimization and LOD chain (meshoptimizer), through build_tree_model.
+// Branch mesh optimization and LOD chain (meshoptimizer), through build_model.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -154,7 +154,7 @@ TEST(Lod, ErrorsAreInModelSpaceMeters) {
 }
 
 TEST(Lod, OptimizedForTheVertexCache) {
-  // The branch mesh exactly as build_tree_model leaves it (mesh_branches, then optimize_mesh),
+  // The branch mesh exactly as build_model leaves it (mesh_branches, then optimize_mesh),
   // and the mesher's own output for the same skeleton (conifer meshes with the default ring
   // sides, 3..8) as the reference of what went in.
   TreeGraph g;
