@@ -67,6 +67,7 @@ FrameStats render_still(vk::Context& ctx, const Scene& scene, const SceneDesc& d
   times.upload = clock::now();
   FrameSettings settings = scene_frame_settings(desc);
   if (args.occlusion) settings.occlusion = *args.occlusion;
+  settings.pyramid_overlay = args.overlay == "pyramid";
   // Occlusion feeds back from one frame to the next: a still picture shows the steady
   // state, after the hidden trees have thinned out (kWarmupFrames from the same camera).
   constexpr int kWarmupFrames = 5;
@@ -107,6 +108,8 @@ int run_render(const RenderArgs& args) {
   check_output_path(out, "--out");
   SceneDesc desc = load_scene_file(args.scene);
   override_render_settings(desc, args);
+  if (args.overlay == "pyramid" && !args.occlusion.value_or(desc.occlusion))
+    throw InputError(args.scene, 0, "--overlay", "pyramid needs occlusion on ([render] occlusion or --occlusion on)");
   CameraDesc camera = render_camera(desc, args);
   Scene scene = build_cached_scene(desc, args.scene, args.cache);
   times.scene = clock::now();

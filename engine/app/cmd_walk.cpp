@@ -77,6 +77,10 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_3: s.settings.prune_mode = PruneMode::opt; break;
     case GLFW_KEY_O: s.settings.occlusion = !s.settings.occlusion; break;
     case GLFW_KEY_L: s.settings.lambda_view = !s.settings.lambda_view; break;
+    case GLFW_KEY_Y:
+      s.settings.pyramid_overlay = !s.settings.pyramid_overlay;
+      if (s.settings.pyramid_overlay && !s.settings.occlusion) say(s, "the depth pyramid overlay shows with occlusion on ([O])");
+      break;
     case GLFW_KEY_F:
       if (s.wireframe_available) s.settings.wireframe = !s.settings.wireframe;
       else say(s, "wireframe needs the fillModeNonSolid device feature");
@@ -347,7 +351,7 @@ void keep_screenshot(Walk& w, FrameImage& shot, FrameImage& final_shot) {
 bool draw_frame(Walk& w, FrameImage& final_shot) {
   if (w.state.freeze_lod && !w.state.settings.lod_camera) w.state.settings.lod_camera = w.camera.position;
   // Two frames in flight: the GPU draws this frame while the CPU prepares the next; the
-  // HUD shows the statistics of the frame before (its queries are read a frame late).
+  // HUD shows the statistics of the frame two back, whose queries are done by now.
   if (std::optional<FrameStats> done = w.renderer.render_async(fly_camera_desc(w.camera), w.state.settings))
     w.stats = *done;
   OverlayImage overlay;

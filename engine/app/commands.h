@@ -94,6 +94,7 @@ struct RenderArgs {
   std::optional<bool> occlusion;  // --occlusion on|off, overrides [render].occlusion
   std::string mode;               // --mode full|cook|opt, overrides [render].mode
   std::string view;               // --view shaded|lambda|mask, overrides [render].view
+  std::string overlay;            // --overlay pyramid: the depth pyramid in the top-right quarter
   bool stats = false;
   bool validate = false;
   std::string path;              // camera path name ([[path]] name)

@@ -142,6 +142,8 @@ Command add_render(CLI::App& cli) {
       ->check(CLI::IsMember(std::vector<std::string>(prune_mode_names().begin(), prune_mode_names().end())));
   cmd->add_option("--view", a.view, "shaded, lambda (trees by detail level) or mask (coverage for forest compare)")
       ->check(CLI::IsMember({"shaded", "lambda", "mask"}));
+  cmd->add_option("--overlay", a.overlay, "Debug overlay: pyramid (the depth pyramid occlusion tests against; needs occlusion on)")
+      ->check(CLI::IsMember({"pyramid"}));
   cmd->add_flag("--stats", a.stats, "Print GPU statistics and timings");
   cmd->add_option("--path", a.path, "Camera path ([[path]] name) to take the camera from");
   auto* frame_opt = cmd->add_option("--frame", a.frame, "Frame of --path (time = frame / fps)");

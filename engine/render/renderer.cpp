@@ -32,6 +32,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   tail_cull_ = create_tail_cull_pass(ctx, layout_, buffers_.instance_count, buffers_.instance_leaves);
   draw_ = create_draw_pass(ctx, layout_, targets_.samples);
   pr_count_ = create_pr_count_pass(ctx, layout_, targets_.extent);
+  pyramid_overlay_ = create_pyramid_overlay_pass(ctx, layout_);
   pyramid_ = create_depth_pyramid(ctx, targets_.pyramid_source().view, targets_.extent, true);
   image_readback_ = vk::create_buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                       vk::MemoryUse::readback);
@@ -85,6 +86,7 @@ Renderer::~Renderer() {
   }
   vk::destroy_buffer(ctx_, image_readback_);
   destroy_depth_pyramid(ctx_, pyramid_);
+  destroy_pyramid_overlay_pass(ctx_, pyramid_overlay_);
   destroy_pr_count_pass(ctx_, pr_count_);
   destroy_draw_pass(ctx_, draw_);
   destroy_tail_cull_pass(ctx_, tail_cull_);
@@ -148,7 +150,7 @@ void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const Dr
   color_layout_ = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
 }
 
-void Renderer::record_frame(FrameSlot& slot, Output output, const DrawList& list, bool occlusion) {
+void Renderer::record_frame(FrameSlot& slot, Output output, const DrawList& list, bool occlusion, bool overlay) {
   VkCommandBuffer cmd = slot.cmd;
   vk::begin_commands(cmd);
   vkCmdResetQueryPool(cmd, slot.timestamps, 0, kTimestampCount);
@@ -160,6 +162,7 @@ void Renderer::record_frame(FrameSlot& slot, Output output, const DrawList& list
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.timestamps, kFrameStart);
   record_scene(cmd, slot, list, occlusion, true);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, slot.timestamps, kDrawEnd);
+  if (overlay) record_pyramid_overlay_pass(cmd, pyramid_overlay_, layout_, slot.set, targets_);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kPyramidStart);
   if (occlusion) record_pyramid(cmd);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, slot.timestamps, kPyramidEnd);
@@ -325,7 +328,9 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   list.background = !settings.mask;
   list.wireframe = settings.wireframe && has_wireframe() && !settings.mask;
   list.keep_depth = settings.occlusion;
-  record_frame(slot, output, list, settings.occlusion);
+  // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.
+  const bool overlay = settings.pyramid_overlay && settings.occlusion && !settings.mask && pyramid_valid_;
+  record_frame(slot, output, list, settings.occlusion, overlay);
   // The pyramid now holds this frame (or nothing usable, without occlusion).
   pyramid_valid_ = settings.occlusion;
   pyramid_view_proj_ = cm.view_proj;

@@ -16,6 +16,7 @@
 #include "engine/render/draw_pass.h"
 #include "engine/render/gpu_stats.h"
 #include "engine/render/pr_count_pass.h"
+#include "engine/render/pyramid_overlay_pass.h"
 #include "engine/render/render_targets.h"
 #include "engine/render/scene_buffers.h"
 #include "engine/render/tail_cull_pass.h"
@@ -50,6 +51,9 @@ struct FrameSettings {
   // (`forest walk`, key K) to look at what the pruning keeps, and the popping measurement,
   // which changes the LOD viewpoint alone between two renders of one view.
   std::optional<glm::vec3> lod_camera;
+  // Debug overlay: the depth pyramid the occlusion test reads, in the top-right quarter
+  // (pyramid_overlay_pass.h). Drawn only with occlusion on; never in coverage (mask) frames.
+  bool pyramid_overlay = false;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -96,7 +100,8 @@ struct CoverageJob {
 
 // Set 0 of every renderer pipeline: the union of the bindings its passes declare.
 inline constexpr std::span<const Binding> kRendererBindingLists[] = {kSceneBindings, kCullBindings, kTailCullBindings,
-                                                                     kDrawBindings, kPrCountBindings};
+                                                                     kDrawBindings, kPrCountBindings,
+                                                                     kPyramidOverlayBindings};
 
 class Renderer {
  public:
@@ -112,10 +117,11 @@ class Renderer {
   FrameStats render(const CameraDesc& camera, FrameImage* image);
   FrameStats render(const CameraDesc& camera, FrameImage* image, const FrameSettings& settings);
   // Records and submits one frame without waiting for it, so the CPU prepares the next frame
-  // while the GPU draws this one (`forest walk`). Returns the statistics of the frame before
-  // the one just submitted (its queries are read a frame late, when its slot is reused);
-  // nullopt when there is none yet. The frame's colour image may be read by later work on
-  // the same queue (present) as after render().
+  // while the GPU draws this one (`forest walk`). Returns the statistics of the frame two calls
+  // back, the last one this call's slot ran: its queries are read only when the slot is
+  // reused, never waited for while the frame in between may still run; nullopt for the first
+  // two calls. The frame's colour image may be read by later work on the same queue
+  // (present) as after render().
   std::optional<FrameStats> render_async(const CameraDesc& camera, const FrameSettings& settings);
 
   // Coverage comparisons on the GPU: render the reference coverage once per view, then
@@ -173,7 +179,7 @@ class Renderer {
   // The one recording path of scene pictures, shared by frames and coverage batches: cull,
   // tail cull (with occlusion), draw. `timed`: timestamps and pipeline statistics of `slot`.
   void record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const DrawList& list, bool occlusion, bool timed);
-  void record_frame(FrameSlot& slot, Output output, const DrawList& list, bool occlusion);
+  void record_frame(FrameSlot& slot, Output output, const DrawList& list, bool occlusion, bool overlay);
   void record_output(VkCommandBuffer cmd, Output output, VkDescriptorSet set);
   void record_pyramid(VkCommandBuffer cmd);
   bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;
@@ -194,6 +200,7 @@ class Renderer {
   TailCullPass tail_cull_;
   DrawPass draw_;
   PrCountPass pr_count_;
+  PyramidOverlayPass pyramid_overlay_;
   DepthPyramid pyramid_;
   FrameSlot slots_[kFramesInFlight];
   uint32_t frame_count_ = 0;  // frames submitted; slots_[frame_count_ % kFramesInFlight] is next

@@ -131,6 +131,22 @@ TEST_F(CliTest, MissingSceneFile) {
   EXPECT_TRUE(listing().empty());
 }
 
+// The depth pyramid overlay shows what occlusion tests against: without occlusion there is
+// nothing to show, which is an input error before anything is generated or written.
+TEST_F(CliTest, PyramidOverlayNeedsOcclusion) {
+  fs::path scene = write("ok.toml", scene_with(""));
+  fs::path out = dir_ / "f.png";
+  Result r = run("render '" + scene.string() + "' --out '" + out.string() + "' --overlay pyramid");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("--overlay"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(run("render '" + scene.string() + "' --out '" + out.string() + "' --overlay depth").code, 2);
+  Result ok = run("render '" + scene.string() + "' --out '" + out.string() + "' --overlay pyramid --occlusion on");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(out));
+}
+
 TEST_F(CliTest, MissingOutputFolder) {
   fs::path scene = write("ok.toml", scene_with(""));
   Result r = run("render '" + scene.string() + "' --out '" + (dir_ / "no/such/f.png").string() + "'");

@@ -317,7 +317,7 @@ TEST(GpuInterface, ShadersWereCompiledAndReflected) {
   // The pipelines of the renderer, depth pyramid and present pass.
   for (const char* expected : {"cull_comp", "tail_cull_comp", "pr_count_comp", "depth_pyramid_comp", "sky_vert",
                                "sky_frag", "terrain_vert", "terrain_frag", "branch_vert", "leaf_vert", "tree_frag",
-                               "present_vert", "present_frag"})
+                               "pyramid_overlay_vert", "pyramid_overlay_frag", "present_vert", "present_frag"})
     EXPECT_TRUE(names.count(expected)) << expected << ".spv missing from " << FOREST_SHADER_DIR;
   // Every kind of resource the reflection lists is one the tests below check.
   const std::set<std::string> known = {"entryPoints", "types",           "inputs",           "outputs",
@@ -424,7 +424,7 @@ TEST(GpuInterface, StructLayoutsMatchTheShaders) {
   }
 }
 
-// Bindings, descriptor types and stages against the set layouts of engine/vk/gpu_interface.h.
+// Bindings, descriptor types and stages against the set layouts the C++ side declares (the renderer passes, depth pyramid, present).
 TEST(GpuInterface, BindingsMatchTheSetLayouts) {
   ASSERT_FALSE(shaders().empty());
   std::map<std::pair<const LayoutDecl*, uint32_t>, int> used;
