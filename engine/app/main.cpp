@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "engine/app/commands.h"
+#include "generators/core/limits.h"
 #include "engine/vk/context.h"
 #include "generators/core/input_error.h"
 
@@ -30,8 +31,8 @@ constexpr const char* kValidateHelp =
 
 // --width / --height over the scene's [render] size (render, walk, bench).
 void add_size_options(CLI::App* cmd, std::optional<uint32_t>& width, std::optional<uint32_t>& height) {
-  cmd->add_option("--width", width, "Override [render].width")->check(CLI::Range(16, 8192));
-  cmd->add_option("--height", height, "Override [render].height")->check(CLI::Range(16, 8192));
+  cmd->add_option("--width", width, "Override [render].width")->check(CLI::Range(kMinFrameSide, kMaxFrameSide));
+  cmd->add_option("--height", height, "Override [render].height")->check(CLI::Range(kMinFrameSide, kMaxFrameSide));
 }
 
 // A subcommand whose options CLI11 parses straight into `args`, run with them once parsed.
@@ -85,7 +86,7 @@ Command add_preview(CLI::App& cli) {
   auto* cmd = cli.add_subcommand("preview", "Render a turntable contact sheet of a .glb model");
   cmd->add_option("model", args->model, "Model (.glb)")->required();
   cmd->add_option("--out", args->out, "Output image (.png)")->required();
-  cmd->add_option("--size", args->size, "Pixels per view")->check(CLI::Range(32, 4096));
+  cmd->add_option("--size", args->size, "Pixels per view")->check(CLI::Range(kMinBakeResolution, kMaxBakeResolution));
   cmd->add_option("--views", args->views, "Number of views around the model")->check(CLI::Range(1, 64));
   cmd->add_option("--device", args->device, kDeviceHelp);
   return command(cmd, args, app::run_preview);
@@ -110,7 +111,7 @@ Command add_bake(CLI::App& cli) {
   cmd->add_option("--priority", args->priority, "Leaf order: random, density, orientation, combined, layered");
   cmd->add_option("--seed", args->seed, "Seed of the random parts (default: the model's)");
   cmd->add_option("--views", args->views, "Views averaged by the PR measurement")->check(CLI::Range(1, 64));
-  cmd->add_option("--resolution", args->resolution, "Pixels of each coverage render")->check(CLI::Range(32, 4096));
+  cmd->add_option("--resolution", args->resolution, "Pixels of each coverage render")->check(CLI::Range(kMinBakeResolution, kMaxBakeResolution));
   cmd->add_option("--device", args->device, kDeviceHelp);
   return command(cmd, args, app::run_bake);
 }
@@ -202,7 +203,7 @@ Command add_bench(CLI::App& cli) {
                   "Occlusion modes: path frames drawn (unrecorded) before each played one (default: all in between)")
       ->check(CLI::Range(0, 1000000));
   add_size_options(cmd, a.width, a.height);
-  cmd->add_option("--probe-instances", a.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--probe-instances", a.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0u, kMaxProbeInstances));
   cmd->add_option("--out", a.out, "Output folder (must exist)")->required();
   cmd->add_option("--device", a.device, kDeviceHelp);
   cmd->add_option("--cache", a.cache, kCacheHelp);

@@ -1,4 +1,5 @@
 #include "engine/scene/heightmap.h"
+#include "generators/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,9 +27,9 @@ Heightmap read_heightmap(const std::filesystem::path& file, const char* key) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) throw InputError(file.string(), 0, key, "not a readable image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width < 2 || spec.height < 2 || spec.width > 8192 || spec.height > 8192 || spec.nchannels < 1)
+  if (spec.width < 2 || spec.height < 2 || spec.width > kMaxImageSide || spec.height > kMaxImageSide || spec.nchannels < 1)
     throw InputError(file.string(), 0, key,
-                     "heightmap must be 2..8192 pixels per side, got " + std::to_string(spec.width) + "x" +
+                     "heightmap must be 2.." + std::to_string(kMaxImageSide) + " pixels per side, got " + std::to_string(spec.width) + "x" +
                          std::to_string(spec.height));
   Heightmap h;
   h.width = uint32_t(spec.width);

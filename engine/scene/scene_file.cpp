@@ -32,8 +32,8 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 void read_render(const TomlTable& t, SceneDesc& s) {
   t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view",
                 "occlusion"});
-  s.width = uint32_t(t.integer("width", s.width, 16, 8192));
-  s.height = uint32_t(t.integer("height", s.height, 16, 8192));
+  s.width = uint32_t(t.integer("width", s.width, kMinFrameSide, kMaxFrameSide));
+  s.height = uint32_t(t.integer("height", s.height, kMinFrameSide, kMaxFrameSide));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
   if (s.samples & (s.samples - 1)) t.fail("samples", "must be 1, 2, 4 or 8, got " + std::to_string(s.samples));
   s.lod_error_pixels = float(t.number("lod_error_pixels", s.lod_error_pixels, 0.0, 1000.0));
@@ -91,7 +91,7 @@ void read_bake(const TomlTable& t, BakeDesc& b) {
   t.check_keys({"priority", "views", "resolution"});
   b.priority = t.choice("priority", b.priority, {"random", "density", "orientation", "combined"});
   b.views = uint32_t(t.integer("views", b.views, 1, 64));
-  b.resolution = uint32_t(t.integer("resolution", b.resolution, 32, 4096));
+  b.resolution = uint32_t(t.integer("resolution", b.resolution, kMinBakeResolution, kMaxBakeResolution));
 }
 
 CameraPath read_path(const TomlTable& t) {

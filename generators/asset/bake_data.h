@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "generators/core/limits.h"
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -43,7 +45,6 @@ inline constexpr const char* kBakeKeys[] = {"baked",      "hull_iso",  "hull_rad
                                             "hull_samples", "pr_samples", "pr_tables",   "priority"};
 
 // Hull samples whose points and normals pass these checks on load.
-inline constexpr size_t kMaxHullSamples = 65536;
 inline constexpr float kUnitNormalTolerance = 1e-3f;  // | |n| − 1 | allowed
 
 // Adds the bake keys to `forest` (an extras.forest object): hull_samples, hull_sample_normals,

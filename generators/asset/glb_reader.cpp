@@ -242,11 +242,10 @@ bool no_write(std::string* err, const std::string&, const std::vector<unsigned c
 // Embedded images (buffer views) are decoded by stb_image to RGBA8, within a size limit.
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                 const unsigned char* bytes, int size, void*) {
-  constexpr int kMaxSide = 4096;
   int w = 0, h = 0, comp = 0;
   if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &comp) || w <= 0 || h <= 0 ||
-      w > kMaxSide || h > kMaxSide) {
-    if (err) *err = "image " + std::to_string(index) + ": not a readable PNG/JPEG of at most 4096^2 pixels";
+      w > kMaxGlbImageSide || h > kMaxGlbImageSide) {
+    if (err) *err = "image " + std::to_string(index) + ": not a readable PNG/JPEG of at most " + std::to_string(kMaxGlbImageSide) + "^2 pixels";
     return false;
   }
   unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);

@@ -1,4 +1,5 @@
 #include "generators/bake/hull/hull_field.h"
+#include "generators/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +12,7 @@ namespace {
 
 // Bucket grids beyond this many cells get coarser cells (still >= radius): a stray far-away
 // leaf must not exhaust memory.
-constexpr double kMaxBucketCells = 4.0e6;
 // Sample grids beyond this many points are refused (the caller caps its resolution first).
-constexpr double kMaxGridPoints = 64.0e6;
 
 bool finite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -58,7 +57,7 @@ MetaballField make_metaball_field(std::vector<glm::vec3> centers, float radius) 
   double cell = radius;
   for (int guard = 0; guard < 64; ++guard) {
     glm::dvec3 n = glm::floor(extent / cell) + 1.0;
-    if (n.x * n.y * n.z <= kMaxBucketCells) break;
+    if (n.x * n.y * n.z <= kMaxHullBucketCells) break;
     cell *= 1.5;
   }
   f.cell = float(cell);
@@ -121,7 +120,7 @@ ScalarGrid sample_field(const MetaballField& f, float spacing) {
   const float margin = f.radius + spacing;
   g.origin = lo - margin;
   glm::dvec3 n = glm::ceil(glm::dvec3(hi - lo + 2.0f * margin) / double(spacing)) + 1.0;
-  if (n.x * n.y * n.z > kMaxGridPoints)
+  if (n.x * n.y * n.z > kMaxHullGridPoints)
     throw InputError("", 0, "spacing", "metaball grid too fine for the crown's extent");
   g.size = glm::ivec3(n);
   g.values.assign(size_t(g.size.x) * size_t(g.size.y) * size_t(g.size.z), 0.0f);

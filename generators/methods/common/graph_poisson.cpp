@@ -1,4 +1,5 @@
 #include "generators/methods/common/graph_poisson.h"
+#include "generators/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,6 @@
 namespace forest {
 
 namespace {
-constexpr size_t kMaxCells = size_t(1) << 26;
 }
 
 std::vector<glm::vec3> poisson_disc(const InsideFn& inside, Box box, size_t count, float spacing,
@@ -23,7 +23,7 @@ std::vector<glm::vec3> poisson_disc(const InsideFn& inside, Box box, size_t coun
     dims[a] = std::max(1, int(std::ceil(double(ext[a]) / double(spacing))));
     cells_d *= double(dims[a]);
   }
-  if (cells_d > double(kMaxCells))
+  if (cells_d > double(kMaxPoissonCells))
     throw InputError("graph volume of " + std::to_string(ext.x) + " x " + std::to_string(ext.y) +
                      " x " + std::to_string(ext.z) + " m at node spacing " +
                      std::to_string(spacing) + " m needs too many grid cells");

@@ -1,4 +1,5 @@
 #include "generators/methods/common/graph_yao.h"
+#include "generators/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@ namespace forest {
 
 namespace {
 
-constexpr size_t kMaxCells = size_t(1) << 25;
 
 // Points bucketed into a uniform grid (counting sort: cell_start / items).
 struct PointGrid {
@@ -35,7 +35,7 @@ PointGrid make_grid(const std::vector<glm::vec3>& pts, float cell) {
   glm::vec3 ext = glm::max(hi - lo, glm::vec3(1e-6f));
   // Grow the cell until the grid is of sane size (few points per cell either way).
   double vol = double(ext.x) * ext.y * ext.z;
-  cell = std::max(cell, float(std::cbrt(vol / double(kMaxCells))) * 1.01f);
+  cell = std::max(cell, float(std::cbrt(vol / double(kMaxYaoCells))) * 1.01f);
   g.lo = lo;
   g.cell = cell;
   for (int a = 0; a < 3; ++a) g.dims[a] = std::max(1, int(std::ceil(ext[a] / cell)) + 1);

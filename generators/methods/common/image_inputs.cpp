@@ -1,4 +1,5 @@
 #include "generators/methods/common/image_inputs.h"
+#include "generators/core/limits.h"
 
 #include "generators/methods/common/strokes_io.h"
 
@@ -16,7 +17,6 @@ namespace forest {
 
 namespace {
 
-constexpr int kMaxImageSide = 8192;
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -182,7 +182,7 @@ Mask load_mask(const std::filesystem::path& file) {
   if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxImageSide || spec.height > kMaxImageSide ||
       spec.nchannels < 1 || spec.nchannels > 16)
     fail(name, "", "unsupported mask size " + std::to_string(spec.width) + "x" +
-                       std::to_string(spec.height) + " (1..8192 per side)");
+                       std::to_string(spec.height) + " (1.." + std::to_string(kMaxImageSide) + " per side)");
   const int nc = spec.nchannels;
   int channel = spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel
                 : (nc == 2 || nc == 4)                               ? nc - 1

@@ -30,6 +30,8 @@
 #include <utility>
 #include <vector>
 
+#include "generators/core/limits.h"
+
 #include <glm/glm.hpp>
 
 namespace forest {
@@ -49,8 +51,6 @@ struct Drawing {
   std::vector<Stroke> strokes;
 };
 
-inline constexpr double kMaxDrawingCoordinate = 1e4;
-inline constexpr size_t kMaxStrokePoints = 100'000;
 
 // By extension: .json or .svg; anything else is an InputError.
 Drawing read_drawing(const std::filesystem::path& file);

@@ -22,6 +22,8 @@
 #include <string_view>
 #include <vector>
 
+#include "generators/core/limits.h"
+
 #include <glm/glm.hpp>
 
 #include "generators/tree/tree_graph.h"
@@ -41,7 +43,6 @@ struct LSystem {
 
 // Strings larger than this are refused: n iterations of growth is exponential, and a typo in
 // `iterations` should be an error message, not an exhausted machine.
-inline constexpr size_t kMaxLSystemSymbols = 2'000'000;
 
 // Describes what is wrong with the brackets or arguments of `s`, or nullopt when fine.
 std::optional<std::string> check_lsystem_syntax(std::string_view s);

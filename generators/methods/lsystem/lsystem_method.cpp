@@ -11,6 +11,7 @@
 //   { predecessor = "X" (one letter), successor = "...", weight = 1.0 }; plus the shared
 //   look keys (model/look_keys.h).
 #include "generators/methods/lsystem/lsystem_method.h"
+#include "generators/core/limits.h"
 
 #include <cmath>
 #include <vector>
@@ -25,8 +26,6 @@ namespace forest {
 namespace {
 
 // Limits that keep a typo from exhausting the machine; generous for real plants.
-constexpr int64_t kMaxIterations = 12;
-constexpr size_t kMaxLeaves = 1'000'000;
 
 struct LSystemSpecies {
   int iterations = 0;
@@ -43,7 +42,7 @@ void check_syntax(const TomlTable& t, std::string_view key, const std::string& s
 
 LSystemSpecies read_species(const TomlTable& t) {
   LSystemSpecies s;
-  s.iterations = int(t.integer("iterations", 0, kMaxIterations));  // required
+  s.iterations = int(t.integer("iterations", 0, kMaxLSystemIterations));  // required
   s.system.axiom = t.string("axiom");
   if (s.system.axiom.empty()) t.fail("axiom", "must not be empty");
   check_syntax(t, "axiom", s.system.axiom);
@@ -139,17 +138,17 @@ Skeleton skeleton_pass(const TomlTable& root, uint64_t seed) {
     size_t bound = tips * size_t(s.leaves.per_tip) +
                    graph.nodes.size() * size_t(s.leaves.along) *
                        size_t(leaves_at_node(s.leaves.phyllotaxis, s.leaves.per_node));
-    if (bound > kMaxLeaves)
+    if (bound > kMaxLeavesPerModel)
       root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
                 "could give up to " + std::to_string(bound) + " leaves, more than " +
-                    std::to_string(kMaxLeaves));
+                    std::to_string(kMaxLeavesPerModel));
     place_twig_leaves(graph, s.leaves, seed);
   }
   if (s.leaves.size <= 0.0f) graph.leaves.clear();
-  if (graph.leaves.size() > kMaxLeaves)
+  if (graph.leaves.size() > kMaxLeavesPerModel)
     root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
               "gives " + std::to_string(graph.leaves.size()) + " leaves, more than " +
-                  std::to_string(kMaxLeaves));
+                  std::to_string(kMaxLeavesPerModel));
   return {std::move(graph)};
 }
 

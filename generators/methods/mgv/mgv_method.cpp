@@ -7,6 +7,7 @@
 //   "upright", and [[iteration.volume]] tables (select = "volume"; see graph_volume.h);
 //   plus the skeleton style keys of graph_skeleton.h.
 #include "generators/methods/mgv/mgv_method.h"
+#include "generators/core/limits.h"
 
 #include "generators/methods/common/graph_skeleton.h"
 
@@ -14,8 +15,6 @@ namespace forest {
 
 namespace {
 constexpr float kDeg = 3.14159265358979323846f / 180.0f;
-constexpr int64_t kMaxNodes = 2'000'000;
-constexpr int64_t kMaxEndpoints = 200'000;
 
 MgvIteration read_iteration(const TomlTable& t, size_t index) {
   t.check_keys({"select", "point", "endpoints", "hops", "outer", "rule", "alpha", "alpha1", "alpha2",
@@ -26,7 +25,7 @@ MgvIteration read_iteration(const TomlTable& t, size_t index) {
              : select == "volume" ? EndpointSelect::Volume
                                   : EndpointSelect::Hops;
   I.point = t.vec3("point", glm::vec3(0.0f, 4.0f, 0.0f), -1000.0, 1000.0);
-  I.endpoints = size_t(t.integer("endpoints", I.select == EndpointSelect::Point ? 1 : 100, 1, kMaxEndpoints));
+  I.endpoints = size_t(t.integer("endpoints", I.select == EndpointSelect::Point ? 1 : 100, 1, kMaxMgvEndpoints));
   I.hops = uint32_t(t.integer("hops", 4, 1, 1000));
   I.outer = float(t.number("outer", 0.6, 0.01, 1.0));
   std::string rule = t.choice("rule", "piecewise", {"piecewise", "axis", "height"});
@@ -66,7 +65,7 @@ MgvIteration read_iteration(const TomlTable& t, size_t index) {
 MgvParams read_mgv_params(const TomlTable& t) {
   MgvParams P;
   P.size = t.vec3("size", glm::vec3(10.0f, 12.0f, 10.0f), 0.1, 1000.0);
-  P.nodes = size_t(t.integer("nodes", 30000, 100, kMaxNodes));
+  P.nodes = size_t(t.integer("nodes", 30000, 100, kMaxMgvNodes));
   P.reach = float(t.number("reach", 4.0, 1.5, 20.0));
   size_t i = 0;
   for (const TomlTable& it : t.tables("iteration")) P.iterations.push_back(read_iteration(it, i++));

@@ -5,6 +5,7 @@
 //   first): b, alpha (deg), rotate (deg, + = down), direction ([x, y, z]), around_all;
 //   and the skeleton style keys of graph_skeleton.h.
 #include "generators/methods/mig/mig_method.h"
+#include "generators/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,8 +21,6 @@ namespace forest {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-constexpr double kMaxGraphNodes = 4e6;    // all graphs of one tree together
-constexpr double kMaxEndpoints = 200000;
 
 struct Endpoint {
   uint32_t node = 0;       // index in the tree
@@ -217,12 +216,12 @@ MigParams read_params(const TomlTable& t) {
     endpoints = around * P.levels[i].branching;
     total += endpoints;
   }
-  if (total > kMaxEndpoints)
+  if (total > kMaxMigEndpoints)
     t.fail("level", "would create about " + std::to_string(int64_t(total)) + " endpoints, more than " +
-                        std::to_string(int64_t(kMaxEndpoints)));
-  if (nodes > kMaxGraphNodes)
+                        std::to_string(int64_t(kMaxMigEndpoints)));
+  if (nodes > kMaxMigGraphNodes)
     t.fail("subgraph_nodes", "would build about " + std::to_string(int64_t(nodes)) +
-                                 " graph nodes, more than " + std::to_string(int64_t(kMaxGraphNodes)));
+                                 " graph nodes, more than " + std::to_string(int64_t(kMaxMigGraphNodes)));
   return P;
 }
 

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "generators/asset/asset_io.h"
+#include "generators/core/limits.h"
 #include "generators/core/input_error.h"
 #include "generators/core/text_file.h"
 #include "generators/methods/plantons/plantons_model.h"
@@ -19,8 +20,6 @@ using nlohmann::json;
 
 constexpr const char* kFormat = "forest-plantons";
 constexpr int kVersion = 1;
-constexpr size_t kMaxPlantons = 10000;
-constexpr size_t kMaxExemplars = 2000000;
 
 double round7(double x) {
   char buf[32];
@@ -263,7 +262,7 @@ PlantonModel parse_model(const std::string& text, const std::string& name) {
     const json& ex = field(r, e, "exemplars", key, line);
     if (!ex.is_array()) r.fail(key + ".exemplars", "must be an array", line);
     exemplars += ex.size();
-    if (exemplars > kMaxExemplars) r.fail(key + ".exemplars", "more than 2000000 exemplars in all", line);
+    if (exemplars > kMaxPlantonExemplars) r.fail(key + ".exemplars", "more than 2000000 exemplars in all", line);
     for (size_t k = 0; k < ex.size(); ++k) {
       std::vector<double> s = numbers(r, ex[k], key + ".exemplars[" + std::to_string(k) + "]", line, d, -1e6, 1e6);
       if (!(s[0] > 0.0)) r.fail(key + ".exemplars[" + std::to_string(k) + "]", "length must be > 0", line);

@@ -1,4 +1,5 @@
 #include "generators/methods/plantons/plantons_samples.h"
+#include "generators/core/limits.h"
 
 #include <cmath>
 #include <cstdio>
@@ -16,7 +17,6 @@ namespace forest {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-constexpr size_t kMaxSampleNodes = 4000000;
 
 struct GtStem {
   double length, length_sd, r_base, r_tip, bend;  // bend: upward offset of P1, P2 (× L)
@@ -176,7 +176,7 @@ std::vector<TreeGraph> parse_samples(const std::string& text, const std::string&
     TreeGraph g;
     const json& nodes = tree["nodes"];
     total += nodes.size();
-    if (total > kMaxSampleNodes) fail(".nodes", "more than 4000000 nodes in all");
+    if (total > kMaxSampleNodes) fail(".nodes", "more than " + std::to_string(kMaxSampleNodes) + " nodes in all");
     for (size_t i = 0; i < nodes.size(); ++i) {
       const json& n = nodes[i];
       const std::string nk = ".nodes[" + std::to_string(i) + "]";

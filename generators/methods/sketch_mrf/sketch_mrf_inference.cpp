@@ -1,4 +1,5 @@
 #include "generators/methods/sketch_mrf/sketch_mrf_inference.h"
+#include "generators/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@ namespace forest {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kMaxChildren = 7;  // 7! = 5040 label hypotheses at one node
 
 double wrap(double a) {
   a = std::fmod(a + kPi, 2.0 * kPi);
@@ -156,7 +156,7 @@ double label_gamma_offset(int label, int K) {
 }
 
 std::vector<std::vector<int>> label_hypotheses(int K) {
-  if (K < 0 || K > kMaxChildren) throw InputError("label_hypotheses: K out of range");
+  if (K < 0 || K > kMaxSketchChildren) throw InputError("label_hypotheses: K out of range");
   std::vector<int> perm(static_cast<size_t>(K));
   std::iota(perm.begin(), perm.end(), 0);
   std::vector<std::vector<int>> out;
@@ -247,7 +247,7 @@ SketchTree sketch_tree_from_drawing(const Drawing& drawing) {
   t.children.assign(t.xy.size(), {});
   for (size_t i = 1; i < t.xy.size(); ++i) t.children[size_t(t.parent[i])].push_back(int(i));
   for (size_t i = 0; i < t.xy.size(); ++i)
-    if (t.children[i].size() > size_t(kMaxChildren))
+    if (t.children[i].size() > size_t(kMaxSketchChildren))
       throw InputError(drawing.file, 0, "strokes", "more than 7 segments leave the point (" +
                        std::to_string(t.xy[i].x) + ", " + std::to_string(t.xy[i].y) + ")");
   return t;
