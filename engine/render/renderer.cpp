@@ -265,7 +265,11 @@ PrResult Renderer::compare_with_reference(const CameraDesc& camera, const FrameS
 }
 
 gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const FrameSettings& settings) const {
-  CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
+  return frame_data(camera, camera_matrices(camera, float(width_) / float(height_)), settings);
+}
+
+gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatrices& cm,
+                                    const FrameSettings& settings) const {
   const SkyDesc& sky = scene_.desc.sky;
   gpu::FrameData fd{};
   fd.view_proj = cm.view_proj;
@@ -314,8 +318,8 @@ void Renderer::wait(FrameSlot& slot) { VK_CHECK(vkWaitForFences(ctx_.device, 1, 
 
 void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const FrameSettings& settings, Output output) {
   auto cpu_start = std::chrono::steady_clock::now();
-  gpu::FrameData fd = frame_data(camera, settings);
   CameraMatrices cm = camera_matrices(camera, float(width_) / float(height_));
+  gpu::FrameData fd = frame_data(camera, cm, settings);
   const bool cut = settings.occlusion && camera_cut(cm, camera, settings);
   if (settings.occlusion) {
     fd.occlusion = OCCLUSION_ON | (cut ? OCCLUSION_CUT : 0u);

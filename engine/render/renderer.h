@@ -184,6 +184,7 @@ class Renderer {
   void record_pyramid(VkCommandBuffer cmd);
   bool camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const;
   gpu::FrameData frame_data(const CameraDesc& camera, const FrameSettings& settings) const;
+  gpu::FrameData frame_data(const CameraDesc& camera, const CameraMatrices& cm, const FrameSettings& settings) const;
   // Coverage batches (coverage_batch.cpp): one mask render recorded into `cmd`.
   void record_coverage_render(VkCommandBuffer cmd, const FrameSlot& slot, const gpu::FrameData& frame, bool branches,
                               bool leaves);
