@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
       tree_nodes = tree.nodes.size();
       ModelDescription d;
       d.method = "mgv";
-      TreeModel m = build_model(finish_skeleton(std::move(tree), style, 1), look, d);
+      TreeModel m = build_model(finish_skeleton(std::move(tree), style), look, ShootDesign{}, d);
       auto t3 = Clock::now();
       best_graph = std::min(best_graph, seconds(t0, t1));
       best_grow = std::min(best_grow, seconds(t1, t2));

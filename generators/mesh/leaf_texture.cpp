@@ -24,6 +24,9 @@ Blade blade_of(LeafShape s) {
     case LeafShape::ovate: return {0.30f, 0.55f, 1.0f};
     case LeafShape::elliptic: return {0.26f, 0.8f, 0.9f};
     case LeafShape::lanceolate: return {0.12f, 0.5f, 1.3f};
+    case LeafShape::lobed: return {0.30f, 1.1f, 0.75f};   // widest above the middle
+    case LeafShape::deltoid: return {0.34f, 0.28f, 1.15f};  // widest near the base
+    case LeafShape::palmate: return {0.46f, 1.0f, 1.0f};  // outline is polar (palmate_class)
     case LeafShape::needles: break;
   }
   return {0.0f, 1.0f, 1.0f};
@@ -65,21 +68,72 @@ std::vector<Needle> needle_spray() {
   return out;
 }
 
-// What covers card point (x, y): 0 nothing, 1 blade/needle, 2 vein, 3 midrib/twig.
-int classify(LeafShape shape, const std::vector<Needle>& needles, float x, float y) {
+// The margin of a pinnate blade: fine teeth, double teeth (deltoid) or rounded lobes with
+// small ear-like lobes at the base (lobed: Quercus robur's auricles).
+float margin_factor(LeafShape shape, float tau) {
+  switch (shape) {
+    case LeafShape::lobed: {
+      float lobe = std::pow(std::abs(std::sin(3.14159265f * 4.5f * tau)), 0.7f);
+      float ear = tau < 0.12f ? 0.5f * (1.0f - tau / 0.12f) : 0.0f;
+      return 0.58f + 0.42f * lobe + ear;
+    }
+    case LeafShape::deltoid:
+      return 1.0f + 0.04f * std::sin(tau * 150.0f) + 0.03f * std::sin(tau * 52.0f);
+    default: return 1.0f + 0.025f * std::sin(tau * 110.0f);
+  }
+}
+
+// Field maple: five rounded lobes around the top of the petiole, each with its own primary
+// vein radiating from there (palmate venation).
+int palmate_class(float x, float y) {
+  const float cx = 0.0f, cy = kPetiole + 0.40f;
+  if (y < cy && std::abs(x) < 0.009f && y >= 0.0f) return 3;  // petiole up to the blade centre
+  const float dx = x - cx, dy = y - cy;
+  const float rho = std::sqrt(dx * dx + dy * dy), theta = std::atan2(dx, dy);  // 0 = toward the tip
+  static constexpr float kLobes[] = {0.0f, 1.15f, -1.15f, 2.2f, -2.2f};
+  static constexpr float kReach[] = {0.50f, 0.44f, 0.44f, 0.30f, 0.30f};
+  float reach = 0.16f;
+  int nearest = 0;
+  for (int l = 0; l < 5; ++l) {
+    float d = (theta - kLobes[l]) / 0.45f;
+    float r = 0.16f + (kReach[l] - 0.16f) * std::exp(-d * d);
+    if (r > reach) reach = r, nearest = l;
+  }
+  if (std::abs(theta) > 2.75f) reach = std::min(reach, 0.10f);  // the sinus at the petiole
+  reach *= 1.0f + 0.03f * std::sin(theta * 40.0f);
+  if (rho >= reach) return 0;
+  // Primary veins: distance to the ray of the nearest lobe, tapering outward.
+  float lx = std::sin(kLobes[nearest]), ly = std::cos(kLobes[nearest]);
+  float along = dx * lx + dy * ly, across = std::abs(dx * ly - dy * lx);
+  if (along > 0.0f && across < 0.010f * (1.0f - rho / reach) + 0.002f) return 3;
+  // Secondary veins leave the primary one at 45 degrees, every 0.07.
+  float phase = (along - across) / 0.07f;
+  float dv = std::abs(phase - std::round(phase)) * 0.07f * 0.707f;
+  if (along > 0.05f && rho < 0.85f * reach && dv < 0.003f) return 2;
+  return 1;
+}
+
+const std::vector<Needle>& needles() {
+  static const std::vector<Needle> spray = needle_spray();
+  return spray;
+}
+
+}  // namespace
+
+int leaf_texel_class(LeafShape shape, float x, float y, float stroke) {
   const float ax = std::abs(x);
   if (shape == LeafShape::needles) {
-    if (y >= 0.0f && y <= 0.94f && ax < 0.010f * (1.0f - 0.5f * y)) return 3;  // twig
-    for (const Needle& n : needles)
-      if (segment_distance(x, y, n.ax, n.ay, n.bx, n.by) < 0.011f) return 1;
+    if (y >= 0.0f && y <= 0.94f && ax < stroke * 0.010f * (1.0f - 0.5f * y)) return 3;  // twig
+    for (const Needle& n : needles())
+      if (segment_distance(x, y, n.ax, n.ay, n.bx, n.by) < stroke * 0.011f) return 1;
     return 0;
   }
+  if (shape == LeafShape::palmate) return palmate_class(x, y);
   if (y < 0.0f || y > 1.0f) return 0;
   if (y < kPetiole + 0.01f && ax < 0.009f) return 3;  // petiole
   const Blade bl = blade_of(shape);
   float tau = (y - kPetiole) / (1.0f - kPetiole);
-  // A finely toothed margin.
-  float h = blade_profile(bl, tau) * (1.0f + 0.025f * std::sin(tau * 110.0f));
+  float h = blade_profile(bl, tau) * margin_factor(shape, tau);
   if (ax >= h) return 0;
   // Vein widths scale with the blade's width.
   const float k = bl.half_width / 0.3f;
@@ -93,10 +147,9 @@ int classify(LeafShape shape, const std::vector<Needle>& needles, float x, float
   return 1;
 }
 
-}  // namespace
 
 std::optional<LeafShape> parse_leaf_shape(std::string_view name) {
-  for (LeafShape s : {LeafShape::ovate, LeafShape::elliptic, LeafShape::lanceolate, LeafShape::needles})
+  for (LeafShape s : kLeafShapes)
     if (name == leaf_shape_name(s)) return s;
   return std::nullopt;
 }
@@ -106,6 +159,9 @@ const char* leaf_shape_name(LeafShape shape) {
     case LeafShape::ovate: return "ovate";
     case LeafShape::elliptic: return "elliptic";
     case LeafShape::lanceolate: return "lanceolate";
+    case LeafShape::lobed: return "lobed";
+    case LeafShape::deltoid: return "deltoid";
+    case LeafShape::palmate: return "palmate";
     case LeafShape::needles: return "needles";
   }
   return "ovate";
@@ -113,7 +169,9 @@ const char* leaf_shape_name(LeafShape shape) {
 
 float leaf_card_aspect(LeafShape shape) {
   if (shape == LeafShape::needles) return 2.0f * (0.30f * std::sin(64.0f * 3.14159265f / 180.0f) + kMargin);
-  return 2.0f * (blade_of(shape).half_width * 1.025f + kMargin);
+  const float teeth = shape == LeafShape::lobed ? 1.0f : shape == LeafShape::deltoid ? 1.07f : 1.03f;
+  if (shape == LeafShape::palmate) return 2.0f * (0.46f + kMargin);
+  return 2.0f * (blade_of(shape).half_width * teeth + kMargin);
 }
 
 Image8 make_leaf_texture(LeafShape shape, uint32_t size) {
@@ -121,7 +179,6 @@ Image8 make_leaf_texture(LeafShape shape, uint32_t size) {
   img.width = img.height = size;
   img.rgba.resize(size_t(size) * size * 4);
   const float w = leaf_card_aspect(shape);
-  const std::vector<Needle> needles = shape == LeafShape::needles ? needle_spray() : std::vector<Needle>{};
   constexpr int kSub = 4;  // 4 x 4 samples per texel: 16 coverage levels
   // Shades (multipliers of the model's leaf color): blade, vein, midrib.
   const float shade[4] = {1.0f, 1.0f, 0.72f, 0.58f};
@@ -133,7 +190,7 @@ Image8 make_leaf_texture(LeafShape shape, uint32_t size) {
         for (int sx = 0; sx < kSub; ++sx) {
           float u = (float(px) + (float(sx) + 0.5f) / kSub) / float(size);
           float v = (float(py) + (float(sy) + 0.5f) / kSub) / float(size);
-          int c = classify(shape, needles, (u - 0.5f) * w, 1.0f - v);
+          int c = leaf_texel_class(shape, (u - 0.5f) * w, 1.0f - v);
           if (c) ++covered, tone += shade[c];
         }
       // Blade tone with a little deterministic mottling; transparent texels get the blade's.

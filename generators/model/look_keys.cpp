@@ -2,13 +2,17 @@
 
 #include "generators/core/toml_reader.h"
 
+#include <string>
+#include <vector>
+
 namespace forest {
 
 LookKeys read_look_keys(const TomlTable& t) {
   const LookKeys d;
   LookKeys k;
-  k.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", leaf_shape_name(d.leaf_shape),
-                                            {"ovate", "elliptic", "lanceolate", "needles"}));
+  std::vector<std::string> shapes;
+  for (LeafShape s : kLeafShapes) shapes.push_back(leaf_shape_name(s));
+  k.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", leaf_shape_name(d.leaf_shape), shapes));
   k.bark_color = t.vec3("bark_color", d.bark_color, 0.0, 1.0);
   k.leaf_color = t.vec3("leaf_color", d.leaf_color, 0.0, 1.0);
   // 3 sides is the least that encloses a tube; 32 is round at any distance the forest shows.

@@ -36,7 +36,8 @@ nlohmann::json toml_to_json(const toml::table& table) {
   return out;
 }
 
-TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ModelDescription& d) {
+TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ShootDesign& shoot,
+                      const ModelDescription& d) {
   if (graph.leaves.size() > kMaxLeavesPerModel)
     throw InputError(d.species, 0, "leaf_count",
                      std::to_string(graph.leaves.size()) + " leaves, more than the limit of " +
@@ -49,8 +50,8 @@ TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ModelD
   optimize_mesh(model.branches);
   static constexpr float kLodFractions[] = {0.5f, 0.25f, 0.12f};
   model.branch_lods = simplify_lods(model.branches, kLodFractions);
-  model.leaf_card = make_leaf_card(look.leaf_shape);
-  model.leaf_texture = make_leaf_texture(look.leaf_shape);
+  model.leaf_card = make_foliage_card(shoot);
+  model.leaf_texture = make_foliage_texture(shoot);
   model.leaves = graph.leaves;
   model.bounding_sphere = bounding_sphere(model.branches, model.leaf_card, model.leaves);
   model.bark_color = look.bark_color;
@@ -79,6 +80,9 @@ TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ModelD
                     {"error", model.branch_lods[i].error}});
   m["branch_lods"] = lods;
   m["leaf_shape"] = leaf_shape_name(look.leaf_shape);
+  m["foliage"] = {{"element", shoot.single_leaf ? "leaf" : "shoot"},
+                  {"leaves_per_element", shoot.single_leaf ? 1 : shoot.leaves},
+                  {"card_aspect", foliage_card_aspect(shoot)}};
   const glm::vec4& s = model.bounding_sphere;
   m["bounding_sphere"] = {s.x, s.y, s.z, s.w};
   m["height"] = height;

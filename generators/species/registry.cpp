@@ -1,6 +1,7 @@
 #include "generators/species/registry.h"
 
 #include "generators/core/toml_reader.h"
+#include "generators/tree/foliage.h"
 #include "generators/methods/lsystem/lsystem_method.h"
 #include "generators/methods/particle_flow/particle_flow_method.h"
 #include "generators/methods/visual_hull/visual_hull_method.h"
@@ -45,12 +46,20 @@ TreeModel generate(const TomlDocument& doc, const std::string& species_name,
                        "`method` must be the first key of a species file");
   const MethodEntry* m = find_method(method);
   if (!m) root.fail("method", "unknown method '" + method + "' (known: " + known_methods() + ")");
-  root.check_key_groups({kCommonSpeciesKeys, m->keys, kLookKeys});
+  root.check_key_groups({kCommonSpeciesKeys, m->keys, kLookKeys, kFoliageKeys});
   root.string("name", "");  // type check before the (possibly long) skeleton pass
   uint64_t seed = options.seed.value_or(uint64_t(root.integer("seed", 1, 0, int64_t(1) << 53)));
   // The look before the skeleton: a bad colour fails at once, not after a long simulation.
   LookKeys look = read_look_keys(root);
+  const FoliageKeys foliage = read_foliage_keys(root, look.leaf_shape);
+  look.leaf_color = season_leaf_color(foliage, look.leaf_color);
   Skeleton skeleton = m->skeleton(root, seed);
+  // The shared foliage stage: every method's skeleton gets the same foliage model.
+  if (skeleton.own_leaves)
+    size_foliage(skeleton.graph, foliage, seed);
+  else
+    place_foliage(skeleton.graph, foliage, seed);
+  if (skeleton.keep_leaves) skeleton.keep_leaves(skeleton.graph);
   ModelDescription d;
   d.method = m->id;
   d.species = root.string("name", species_name);
@@ -58,7 +67,7 @@ TreeModel generate(const TomlDocument& doc, const std::string& species_name,
   d.parameters = toml_to_json(root.raw());
   d.method_meta = std::move(skeleton.meta);
   if (options.skeleton) *options.skeleton = skeleton.graph;
-  return build_model(skeleton.graph, look, d);
+  return build_model(skeleton.graph, look, foliage.shoot, d);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Species preset (TOML, first key `method`) -> TreeModel: the registry checks the keys, reads
-// name, seed and the shared look keys, runs the method's skeleton pass and hands the skeleton
-// to the shared model stage (model_builder.h). Every method is deterministic for its seed.
+// name, seed, the shared look and foliage keys, runs the method's skeleton pass, places the
+// foliage (tree/foliage.h) and hands the skeleton to the shared model stage (model_builder.h).
+// Every method is deterministic for its seed.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -21,7 +22,8 @@ struct GenerateOptions {
   TreeGraph* skeleton = nullptr;  // when set, receives the skeleton the model was meshed from
 };
 
-// Keys of every species file besides the method's own and the look keys (kLookKeys).
+// Keys of every species file besides the method's own, the look keys (kLookKeys) and the
+// foliage keys (kFoliageKeys).
 inline constexpr std::string_view kCommonSpeciesKeys[] = {"method", "name", "seed"};
 
 // One modeling method. Each lives in generators/methods/<id>/, exports its entry from
@@ -29,11 +31,12 @@ inline constexpr std::string_view kCommonSpeciesKeys[] = {"method", "name", "see
 struct MethodEntry {
   const char* id;
   // The method's own top-level keys; the registry accepts these, kCommonSpeciesKeys and
-  // kLookKeys and refuses every other key before the skeleton pass runs.
+  // kLookKeys and kFoliageKeys and refuses every other key before the skeleton pass runs.
   std::span<const std::string_view> keys;
   // The skeleton pass: all of the method's randomness, from `seed` only. `species` is the
   // whole species table (keys already checked); paths in it are relative to the species
-  // file (species.file()). Must not read the look keys: the model stage does.
+  // file (species.file()). Must not read the look or foliage keys, nor place leaves: the
+  // shared foliage stage (tree/foliage.h) replaces graph.leaves after this pass.
   Skeleton (*skeleton)(const TomlTable& species, uint64_t seed);
   // Built-in preset for `forest generate --method ID`; must run without any input file.
   const char* (*default_species_text)();

@@ -1,7 +1,6 @@
-// Leaf placement on a skeleton (Neubert 2012 ch5 "Twigs and leaves"): along the terminal twigs in
-// a phyllotactic pattern and in a cluster at every tip, with random tilt, size and color.
-// This is part of the skeleton pass (its randomness lives in TreeGraph::leaves), so meshing
-// stays a pure function of the graph.
+// The geometry of one leaf (Neubert 2012 ch5 "Twigs and leaves"): phyllotaxis, the leaf frame
+// rule and per-leaf colour. The foliage stage (foliage.h) places elements with these; the
+// foliage card (mesh/foliage_card.h) arranges the leaves of a shoot with them.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -62,28 +61,5 @@ LeafPlacement orient_leaf(glm::vec3 position, glm::vec3 axis, float azimuth, flo
 // A random per-leaf color multiplier: brightness 1 ± jitter and a yellowing of up to jitter
 // (more red, less blue). White for jitter 0 (no random draw then).
 glm::vec3 leaf_color_variation(Rng& rng, float jitter);
-
-struct LeafParams {
-  float size = 0.1f;          // blade length, meters
-  float size_jitter = 0.0f;   // size * (1 + jitter * U(-1, 1))
-  float angle_deg = 40.0f;    // tilt of the blade away from the twig
-  float angle_jitter_deg = 10.0f;
-  int per_tip = 1;            // leaves in the cluster at every tip, spread evenly around it
-  int along = 0;              // leaf nodes per segment of a terminal twig (see place_twig_leaves)
-  Phyllotaxis phyllotaxis = Phyllotaxis::spiral;
-  int per_node = 3;           // leaves per node when whorled
-  float divergence_deg = 137.5f;  // spiral phyllotaxis
-  float color_jitter = 0.0f;  // leaf_color_variation
-};
-
-// Appends leaves to graph.leaves. A terminal twig is the path from the last branching node
-// to a tip: nodes whose whole subtree is a single path. Each segment of a terminal twig
-// carries `along` leaf nodes evenly spaced toward its end node (the last one at the end node
-// itself; on a segment that ends at a tip, the tip cluster takes that place), each with
-// leaves_at_node leaves turning by the phyllotaxis along the twig from a random start. The
-// twig's reference direction is parallel-transported from segment to segment. Blades face
-// away from a point inside the crown (the centroid of the leaf-bearing nodes, lowered by a
-// quarter of their height range) by the leaf frame rule.
-void place_twig_leaves(TreeGraph& graph, const LeafParams& params, uint64_t seed);
 
 }  // namespace forest

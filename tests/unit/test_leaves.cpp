@@ -86,78 +86,8 @@ TEST(Leaves, PhyllotaxisModes) {
   EXPECT_NEAR(phyllotaxis_azimuth(Phyllotaxis::spiral, 1, 3, 0), 3 * 137.50776 * kPi / 180.0, 1e-4);
 }
 
-TEST(Leaves, PlacementFollowsThePhyllotaxisAlongATwig) {
-  // A straight twig of 4 segments, 2 leaf nodes per segment, no tip cluster, no jitter.
-  for (Phyllotaxis mode : {Phyllotaxis::alternate, Phyllotaxis::opposite, Phyllotaxis::whorled, Phyllotaxis::spiral}) {
-    TreeGraph g = straight_twig(4);
-    LeafParams p;
-    p.phyllotaxis = mode;
-    p.per_node = 4;
-    p.along = 2;
-    p.per_tip = 0;
-    p.angle_deg = 60.0f;
-    p.angle_jitter_deg = 0.0f;
-    p.size = 0.2f;
-    place_twig_leaves(g, p, 5);
-    const int per_node = leaves_at_node(mode, 4);
-    // 4 segments x 2 leaf nodes, minus the tip's place: 7 leaf nodes.
-    ASSERT_EQ(g.leaves.size(), size_t(7 * per_node)) << phyllotaxis_name(mode);
-    const glm::vec3 ref = any_perpendicular(glm::vec3(0, 1, 0));
-    double phase = azimuth_of(g.leaves[0], ref);
-    for (size_t i = 0; i < g.leaves.size(); ++i) {
-      long k = long(i) / per_node;
-      int j = int(i) % per_node;
-      // Leaf nodes at every half step up the twig.
-      EXPECT_NEAR(g.leaves[i].position.y, 0.5f * float(k + 1), 1e-5f);
-      double expect = phase + phyllotaxis_azimuth(mode, 4, k, j);
-      EXPECT_LT(angle_diff(azimuth_of(g.leaves[i], ref), expect), 1e-3) << phyllotaxis_name(mode) << " leaf " << i;
-      // Tilt 60° from the twig.
-      glm::vec3 blade = g.leaves[i].rotation * glm::vec3(0, 1, 0);
-      EXPECT_NEAR(std::acos(blade.y) * 180.0 / kPi, 60.0, 1e-3);
-    }
-  }
-}
-
-TEST(Leaves, NormalsFaceAwayFromTheCrown) {
-  TurtleParams tp;
-  tp.angle_deg = 35.0f;
-  tp.roll_jitter_deg = 180.0f;
-  tp.step = 0.5f;
-  LSystem s{"X", {{'X', "F[+X][-X]FX", 1.0}}};
-  TreeGraph g = interpret(rewrite(s, 4, 2), tp, 2);
-  LeafParams p;
-  p.per_tip = 3;
-  p.along = 1;
-  p.size = 0.3f;
-  p.color_jitter = 0.2f;
-  place_twig_leaves(g, p, 9);
-  ASSERT_GT(g.leaves.size(), 20u);
-  glm::vec3 centroid(0.0f);
-  for (const LeafPlacement& l : g.leaves) centroid += l.position;
-  centroid /= float(g.leaves.size());
-  size_t outward = 0;
-  std::set<float> reds;
-  for (const LeafPlacement& l : g.leaves) {
-    glm::vec3 n = l.rotation * glm::vec3(0, 0, 1), a = l.rotation * glm::vec3(0, 1, 0);
-    EXPECT_NEAR(glm::dot(n, a), 0.0f, 1e-5f);
-    outward += glm::dot(n, l.position - centroid + glm::vec3(0, 1, 0)) > 0.0f;
-    // Color: brightness 1 ± 0.2 with some yellowing, never negative.
-    EXPECT_GE(l.color.g, 0.8f - 1e-5f);
-    EXPECT_LE(l.color.g, 1.2f * 1.02f + 1e-5f);
-    EXPECT_GE(l.color.r, l.color.b);
-    reds.insert(l.color.r);
-  }
-  EXPECT_GT(outward, g.leaves.size() * 8 / 10);
-  EXPECT_GT(reds.size(), g.leaves.size() / 2);  // every leaf its own color
-  // Without jitter the colors stay white.
-  TreeGraph plain = straight_twig(3);
-  p.color_jitter = 0.0f;
-  place_twig_leaves(plain, p, 9);
-  for (const LeafPlacement& l : plain.leaves) EXPECT_EQ(l.color, glm::vec3(1.0f));
-}
-
 TEST(LeafTexture, AlphaMaskedAndDeterministic) {
-  for (LeafShape shape : {LeafShape::ovate, LeafShape::elliptic, LeafShape::lanceolate, LeafShape::needles}) {
+  for (LeafShape shape : kLeafShapes) {
     Image8 t = make_leaf_texture(shape, 128);
     ASSERT_EQ(t.width, 128u);
     ASSERT_EQ(t.height, 128u);
@@ -187,7 +117,7 @@ TEST(LeafTexture, AlphaMaskedAndDeterministic) {
 }
 
 TEST(LeafTexture, CardCoversTheTexture) {
-  for (LeafShape shape : {LeafShape::ovate, LeafShape::lanceolate, LeafShape::needles}) {
+  for (LeafShape shape : kLeafShapes) {
     Mesh card = make_leaf_card(shape);
     ASSERT_EQ(card.vertices.size(), 4u);
     ASSERT_EQ(card.indices.size(), 6u);
@@ -215,29 +145,3 @@ TEST(LeafTexture, CardCoversTheTexture) {
   }
 }
 
-TEST(Leaves, SpeciesKeys) {
-  const std::string base = R"(method = "lsystem"
-iterations = 2
-axiom = "X"
-step = 0.5
-leaf_size = 0.2
-leaves_per_tip = 0
-leaves_along = 1
-)";
-  const std::string rules = "[[production]]\npredecessor = \"X\"\nsuccessor = \"F[+X]F[-X]X\"\n";
-  TreeModel spiral = generate_from_species_text(base + rules, "a.toml");
-  TreeModel whorled = generate_from_species_text(base + "phyllotaxis = \"whorled\"\nleaves_per_node = 4\n" + rules, "b.toml");
-  TreeModel opposite = generate_from_species_text(base + "phyllotaxis = \"decussate\"\n" + rules, "c.toml");
-  ASSERT_GT(spiral.leaves.size(), 0u);
-  EXPECT_EQ(whorled.leaves.size(), 4 * spiral.leaves.size());
-  EXPECT_EQ(opposite.leaves.size(), 2 * spiral.leaves.size());
-  TreeModel needles = generate_from_species_text(base + "leaf_shape = \"needles\"\n" + rules, "d.toml");
-  EXPECT_EQ(needles.meta["leaf_shape"], "needles");
-  EXPECT_EQ(needles.leaf_texture.rgba, make_leaf_texture(LeafShape::needles).rgba);
-  EXPECT_THROW(generate_from_species_text(base + "phyllotaxis = \"random\"\n" + rules, "e.toml"), InputError);
-  EXPECT_THROW(generate_from_species_text(base + "phyllotaxis = \"opposite\"\nleaves_per_node = 3\n" + rules, "f.toml"),
-               InputError);
-  EXPECT_THROW(generate_from_species_text(base + "phyllotaxis = \"whorled\"\nleaves_per_node = 2\n" + rules, "g.toml"),
-               InputError);
-  EXPECT_THROW(generate_from_species_text(base + "leaf_shape = \"maple\"\n" + rules, "h.toml"), InputError);
-}

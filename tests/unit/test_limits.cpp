@@ -30,7 +30,7 @@ iterations = 2
 axiom = "X"
 angle = 25.0
 step = 0.3
-leaves_per_tip = 2
+shoots_per_tip = 2
 leaf_size = 0.2
 [[production]]
 predecessor = "X"

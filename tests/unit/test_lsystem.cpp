@@ -245,52 +245,6 @@ TEST(ChildrenOf, InverseOfParent) {
   EXPECT_TRUE(c[2].empty());
 }
 
-TEST(Leaves, TwigLeavesCountAndOrientation) {
-  TreeGraph g = interpret("FF[+FF[-F]F]F[-FFF]", unit_turtle(30.0f), 1);
-  LeafParams p;
-  p.per_tip = 2;
-  p.along = 1;
-  p.angle_deg = 40.0f;
-  p.angle_jitter_deg = 5.0f;
-  p.size = 0.2f;
-  p.size_jitter = 0.1f;
-  place_twig_leaves(g, p, 3);
-  // Tips: F5 (in [-F]), F6 and the last F of [-FFF] (2 leaves each); one leaf on each other
-  // node whose subtree is a single path, counted from the structure:
-  auto children = children_of(g);
-  std::vector<char> path(g.nodes.size());
-  size_t tips = 0, along = 0;
-  for (size_t k = g.nodes.size(); k-- > 0;) {
-    path[k] = children[k].empty() || (children[k].size() == 1 && path[children[k][0]]);
-    if (k > 0 && children[k].empty()) ++tips;
-    else if (k > 0 && path[k]) ++along;
-  }
-  EXPECT_EQ(tips, 3u);
-  EXPECT_EQ(along, 3u);  // the F before [-FFF] and the first two F inside it
-  EXPECT_EQ(g.leaves.size(), tips * 2 + along);
-  for (const LeafPlacement& l : g.leaves) {
-    EXPECT_NEAR(glm::length(l.rotation), 1.0f, 1e-5f);
-    glm::vec3 blade = l.rotation * glm::vec3(0, 1, 0);
-    glm::vec3 normal = l.rotation * glm::vec3(0, 0, 1);
-    EXPECT_NEAR(glm::dot(blade, normal), 0.0f, 1e-5f);
-    EXPECT_GE(l.scale, 0.18f - 1e-6f);
-    EXPECT_LE(l.scale, 0.22f + 1e-6f);
-    // Tilt from the twig direction within angle +- jitter.
-    const TreeNode* at = nullptr;
-    for (const TreeNode& n : g.nodes)
-      if (n.position == l.position) at = &n;
-    ASSERT_NE(at, nullptr);
-    glm::vec3 axis = glm::normalize(at->position - g.nodes[size_t(at->parent)].position);
-    float tilt = std::acos(std::clamp(glm::dot(axis, blade), -1.0f, 1.0f)) * 180.0f / 3.14159265f;
-    EXPECT_GE(tilt, 35.0f - 1e-3f);
-    EXPECT_LE(tilt, 45.0f + 1e-3f);
-  }
-  TreeGraph again = interpret("FF[+FF[-F]F]F[-FFF]", unit_turtle(30.0f), 1);
-  place_twig_leaves(again, p, 3);
-  ASSERT_EQ(again.leaves.size(), g.leaves.size());
-  for (size_t i = 0; i < g.leaves.size(); ++i) EXPECT_EQ(again.leaves[i].rotation, g.leaves[i].rotation);
-}
-
 TEST(Leaves, LSymbolsPlaceLeavesAtTheTurtle) {
   TurtleParams p = unit_turtle();
   p.leaf_size = 0.3f;

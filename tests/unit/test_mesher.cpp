@@ -1,6 +1,8 @@
 // Branch tubes along B-spline axes, their rings, frames and bark UVs, and the bounding sphere.
 #include <gtest/gtest.h>
 
+#include "generators/tree/foliage.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -259,10 +261,10 @@ TEST(Mesher, PureFunction) {
 
 TEST(BoundingSphere, ContainsEverythingAndIsTight) {
   TreeGraph g = test_tree();
-  LeafParams lp;
-  lp.size = 0.3f;
-  lp.per_tip = 3;
-  place_twig_leaves(g, lp, 9);
+  FoliageKeys foliage;
+  foliage.shoot_length = 0.3f;
+  foliage.per_tip = 3;
+  place_foliage(g, foliage, 9);
   Mesh branches = mesh_branches(g);
   Mesh card = make_leaf_card();
   glm::vec4 s = bounding_sphere(branches, card, g.leaves);

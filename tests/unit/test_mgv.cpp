@@ -267,7 +267,7 @@ TEST(Mgv, ForestPresetsFitTheBudget) {
   for (const char* name : {"mgv_c", "mgv_o"}) {
     TreeModel m = generate_from_species(species(name));
     EXPECT_LE(m.branches.indices.size() / 3, 6500u) << name;
-    EXPECT_LE(m.leaves.size(), 2500u) << name;
+    EXPECT_LE(m.leaves.size(), 12000u) << name;  // shoot cards; method demos have no floor
     EXPECT_GE(m.leaves.size(), 300u) << name;
     EXPECT_GE(double(m.meta["height"]), 5.0) << name;
   }

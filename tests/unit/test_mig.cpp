@@ -137,7 +137,7 @@ TEST(Mig, ForestPresetsFitTheBudget) {
   for (const char* name : {"mig_o", "mig_j"}) {
     TreeModel m = generate_from_species(species(name));
     EXPECT_LE(m.branches.indices.size() / 3, 6500u) << name;
-    EXPECT_LE(m.leaves.size(), 2500u) << name;
+    EXPECT_LE(m.leaves.size(), 12000u) << name;  // shoot cards; method demos have no floor
     EXPECT_GE(m.leaves.size(), 300u) << name;
     EXPECT_GE(double(m.meta["height"]), 5.0) << name;
   }

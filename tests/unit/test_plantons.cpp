@@ -47,7 +47,7 @@ iterations = 3
 axiom = "X"
 step = 0.5
 leaf_size = 0.1
-leaves_per_tip = 2
+shoots_per_tip = 2
 [[production]]
 predecessor = "X"
 successor = "F[+X]F[-X]/X"

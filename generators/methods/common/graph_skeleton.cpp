@@ -58,18 +58,6 @@ SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defau
   if (s.trunk_radius < s.tip_radius) t.fail("trunk_radius", "must be >= tip_radius");
   s.zeta = float(t.number("zeta", defaults.zeta, 0.01, 3.0));
   s.pipe_exponent = float(t.number("pipe_exponent", defaults.pipe_exponent, 1.0, 4.0));
-  LeafParams& l = s.leaves;
-  l.size = float(t.number("leaf_size", defaults.leaves.size, 0.0, 10.0));
-  l.size_jitter = float(t.number("leaf_size_jitter", defaults.leaves.size_jitter, 0.0, 0.9));
-  l.angle_deg = float(t.number("leaf_angle", defaults.leaves.angle_deg, 0.0, 180.0));
-  l.angle_jitter_deg = float(t.number("leaf_angle_jitter", defaults.leaves.angle_jitter_deg, 0.0, 90.0));
-  l.per_tip = int(t.integer("leaves_per_tip", defaults.leaves.per_tip, 0, 16));
-  l.along = int(t.integer("leaves_along", defaults.leaves.along, 0, 16));
-  // Species character for graph methods too: one leaf per node (or a decussate pair) along
-  // the twigs; whorled leaves are an L-system feature (leaves_per_node) and not offered here.
-  l.phyllotaxis = *parse_phyllotaxis(t.choice("phyllotaxis", phyllotaxis_name(defaults.leaves.phyllotaxis),
-                                              {"alternate", "distichous", "opposite", "decussate", "spiral"}));
-  l.color_jitter = float(t.number("leaf_color_jitter", defaults.leaves.color_jitter, 0.0, 0.5));
   return s;
 }
 
@@ -163,15 +151,14 @@ size_t count_tips(const TreeGraph& graph) {
   return tips;
 }
 
-TreeGraph finish_skeleton(TreeGraph graph, const SkeletonStyle& style, uint64_t seed) {
+TreeGraph finish_skeleton(TreeGraph graph, const SkeletonStyle& style) {
   smooth_chains(graph, style.smooth_iterations);
   simplify_chains(graph, style.simplify);
   if (style.radius_model == RadiusModel::Pipe)
     assign_pipe_radii(graph, style.tip_radius, style.pipe_exponent);
   else
     assign_length_radii(graph, style.tip_radius, style.trunk_radius, style.zeta);
-  graph.leaves.clear();
-  if (style.leaves.size > 0.0f) place_twig_leaves(graph, style.leaves, seed);
+  graph.leaves.clear();  // the shared foliage stage places them
   return graph;
 }
 

@@ -2,12 +2,11 @@
 // optional smoothing of the graph's zig-zag (the thesis leaves branches "a little wavy"),
 // Douglas–Peucker simplification of branch chains (keeps the triangle budget), radii by
 // w = s^ζ (Xu 2015 ch4.3: s = path length from the farthest tip below) or the pipe model,
-// and leaves on the terminal twigs; the shared model stage (model_builder.h) does the rest.
+// the shared foliage stage (tree/foliage.h) and model stage (model_builder.h) do the rest.
 #pragma once
 #include <cstdint>
 #include <string>
 
-#include "generators/tree/leaves.h"
 #include "generators/tree/tree_graph.h"
 
 namespace forest {
@@ -24,16 +23,11 @@ struct SkeletonStyle {
   float trunk_radius = 0.15f;    // meters at the root (Length model)
   float zeta = 0.3f;             // taper exponent of w = s^ζ
   float pipe_exponent = 2.0f;    // Pipe model
-  LeafParams leaves;
 };
 
-// The species keys read by read_skeleton_style, for a method's key list. phyllotaxis
-// ("alternate"/"distichous", "opposite"/"decussate", "spiral") and leaf_color_jitter mean
-// what they mean for lsystem.
-#define FOREST_SKELETON_STYLE_KEYS                                                          \
-  "smooth", "simplify", "radius_model", "tip_radius", "trunk_radius", "zeta",              \
-      "pipe_exponent", "leaf_size", "leaf_size_jitter", "leaf_angle", "leaf_angle_jitter",   \
-      "leaves_per_tip", "leaves_along", "phyllotaxis", "leaf_color_jitter"
+// The species keys read by read_skeleton_style, for a method's key list.
+#define FOREST_SKELETON_STYLE_KEYS \
+  "smooth", "simplify", "radius_model", "tip_radius", "trunk_radius", "zeta", "pipe_exponent"
 
 SkeletonStyle read_skeleton_style(const TomlTable& t, const SkeletonStyle& defaults = {});
 
@@ -52,7 +46,8 @@ void assign_length_radii(TreeGraph& graph, float tip_radius, float trunk_radius,
 
 size_t count_tips(const TreeGraph& graph);
 
-// Smooth, simplify, radii, leaves (replacing any). `graph` must have parent < own index.
-TreeGraph finish_skeleton(TreeGraph graph, const SkeletonStyle& style, uint64_t seed);
+// Smooth, simplify, radii; leaves cleared (the foliage stage places them). `graph` must have
+// parent < own index.
+TreeGraph finish_skeleton(TreeGraph graph, const SkeletonStyle& style);
 
 }  // namespace forest

@@ -1,6 +1,7 @@
 #include "generators/methods/common/image_species.h"
 
 #include <filesystem>
+#include <memory>
 
 #include "generators/methods/common/image_synthetic.h"
 #include "generators/methods/common/image_tree_util.h"
@@ -24,23 +25,16 @@ ImageTreeStyle read_image_tree_style(const TomlTable& t, const ImageTreeStyle& d
   ImageTreeStyle s = d;
   s.tip_radius = float(t.number("tip_radius", d.tip_radius, 1e-5, 1.0));
   s.pipe_exponent = float(t.number("pipe_exponent", d.pipe_exponent, 1.0, 4.0));
-  s.leaves.size = float(t.number("leaf_size", d.leaves.size, 0.0, 10.0));
-  s.leaves.size_jitter = float(t.number("leaf_size_jitter", d.leaves.size_jitter, 0.0, 0.9));
-  s.leaves.angle_deg = float(t.number("leaf_angle", d.leaves.angle_deg, 0.0, 180.0));
-  s.leaves.angle_jitter_deg = float(t.number("leaf_angle_jitter", d.leaves.angle_jitter_deg, 0.0, 90.0));
-  s.leaves.per_tip = int(t.integer("leaves_per_tip", d.leaves.per_tip, 0, 16));
-  s.leaves.along = int(t.integer("leaves_along", d.leaves.along, 0, 16));
   return s;
 }
 
 Skeleton finish_image_tree(TreeGraph graph, const ImageTreeStyle& style, const ViewSet& views,
-                           uint64_t seed, nlohmann::json stats) {
+                           nlohmann::json stats) {
   assign_pipe_radii(graph, style.tip_radius, style.pipe_exponent);
-  if (style.leaves.size > 0.0f) {
-    place_twig_leaves(graph, style.leaves, seed);
-    drop_leaves_outside_masks(graph, views);
-  }
   Skeleton out{std::move(graph)};
+  // The crown is where the photographs show it: foliage outside any mask is dropped.
+  auto shared_views = std::make_shared<const ViewSet>(views);
+  out.keep_leaves = [shared_views](TreeGraph& g) { drop_leaves_outside_masks(g, *shared_views); };
   out.meta["method_stats"] = std::move(stats);
   return out;
 }

@@ -2,14 +2,10 @@
 //   name, seed (0..2^53), iterations (required, 0..12), axiom (required; see lsystem.h for
 //   the alphabet), angle / angle_jitter / roll_jitter (degrees), step (m) / step_jitter
 //   (fraction) / length_scale (factor of '!'), tropism ([x, y, z]) / tropism_strength,
-//   tip_radius (m) / pipe_exponent (pipe model: 2 da Vinci, 2.49 Murray, 3), leaf_size (m,
-//   0 = no leaves) / leaf_size_jitter / leaf_angle / leaf_angle_jitter (deg) / leaves_per_tip
-//   (tip cluster) / leaves_along (leaf nodes per twig segment) / phyllotaxis ("alternate" or
-//   "distichous", "opposite" or "decussate", "whorled", "spiral") / leaves_per_node (whorled
-//   only, >= 3) / divergence_angle (deg, spiral only) /
-//   leaf_color_jitter (per-leaf color variation), and [[production]] tables
-//   { predecessor = "X" (one letter), successor = "...", weight = 1.0 }; plus the shared
-//   look keys (model/look_keys.h).
+//   tip_radius (m) / pipe_exponent (pipe model: 2 da Vinci, 2.49 Murray, 3), and
+//   [[production]] tables { predecessor = "X" (one letter), successor = "...", weight = 1.0 };
+//   plus the shared look keys (model/look_keys.h) and foliage keys (tree/foliage.h). An 'L'
+//   in the grammar places a foliage element there instead of the foliage stage's placement.
 #include "generators/methods/lsystem/lsystem_method.h"
 #include "generators/core/limits.h"
 
@@ -33,7 +29,6 @@ struct LSystemSpecies {
   TurtleParams turtle;
   float tip_radius = 0.002f;
   float pipe_exponent = 2.0f;
-  LeafParams leaves;
 };
 
 void check_syntax(const TomlTable& t, std::string_view key, const std::string& s) {
@@ -61,31 +56,11 @@ LSystemSpecies read_species(const TomlTable& t) {
   s.tip_radius = float(t.number("tip_radius", 0.002, 1e-5, 1.0));
   s.pipe_exponent = float(t.number("pipe_exponent", 2.0, 1.0, 4.0));
 
-  LeafParams& l = s.leaves;
-  l.size = float(t.number("leaf_size", 0.1, 0.0, 10.0));
-  l.size_jitter = float(t.number("leaf_size_jitter", 0.0, 0.0, 0.9));
-  l.angle_deg = float(t.number("leaf_angle", 40.0, 0.0, 180.0));
-  l.angle_jitter_deg = float(t.number("leaf_angle_jitter", 10.0, 0.0, 90.0));
-  l.per_tip = int(t.integer("leaves_per_tip", 1, 0, 16));
-  l.along = int(t.integer("leaves_along", 0, 0, 16));
-  l.phyllotaxis = *parse_phyllotaxis(
-      t.choice("phyllotaxis", "spiral", {"alternate", "distichous", "opposite", "decussate", "whorled", "spiral"}));
-  if (l.phyllotaxis == Phyllotaxis::whorled) {
-    l.per_node = int(t.integer("leaves_per_node", 3, 3, 16));
-  } else if (t.has("leaves_per_node")) {
-    int implied = leaves_at_node(l.phyllotaxis, 0);
-    if (t.integer("leaves_per_node", implied, 1, 16) != implied)
-      t.fail("leaves_per_node", std::string("must be ") + std::to_string(implied) + " for phyllotaxis \"" +
-                                    phyllotaxis_name(l.phyllotaxis) + "\" (only whorled leaves choose their count)");
-  }
-  l.divergence_deg = float(t.number("divergence_angle", 137.5, 0.0, 360.0));
-  if (t.has("divergence_angle") && l.phyllotaxis != Phyllotaxis::spiral)
-    t.fail("divergence_angle", "applies to phyllotaxis \"spiral\" only");
-  l.color_jitter = float(t.number("leaf_color_jitter", 0.0, 0.0, 0.5));
-  p.leaf_angle_deg = l.angle_deg;
-  p.leaf_size = l.size;
-  p.leaf_size_jitter = l.size_jitter;
-  p.leaf_color_jitter = l.color_jitter;
+  // An 'L' places one foliage element; the shared foliage stage sizes and colours it.
+  p.leaf_angle_deg = 45.0f;
+  p.leaf_size = 1.0f;
+  p.leaf_size_jitter = 0.0f;
+  p.leaf_color_jitter = 0.0f;
 
   for (const TomlTable& pt : t.tables("production")) {
     pt.check_keys({"predecessor", "successor", "weight"});
@@ -112,9 +87,7 @@ bool uses_leaf_symbols(const LSystem& system) {
 // The method's own species keys; the registry adds the common and the look keys.
 constexpr std::string_view kKeys[] = {
     "iterations", "axiom", "angle", "angle_jitter", "roll_jitter", "step", "step_jitter",
-    "length_scale", "tip_radius", "pipe_exponent", "tropism", "tropism_strength", "leaf_size",
-    "leaf_size_jitter", "leaf_angle", "leaf_angle_jitter", "leaves_per_tip", "leaves_along",
-    "phyllotaxis", "leaves_per_node", "divergence_angle", "leaf_color_jitter", "production"};
+    "length_scale", "tip_radius", "pipe_exponent", "tropism", "tropism_strength", "production"};
 
 Skeleton skeleton_pass(const TomlTable& root, uint64_t seed) {
   LSystemSpecies s = read_species(root);
@@ -127,29 +100,15 @@ Skeleton skeleton_pass(const TomlTable& root, uint64_t seed) {
   }
   TreeGraph graph = interpret(symbols, s.turtle, seed);
   assign_pipe_radii(graph, s.tip_radius, s.pipe_exponent);
-  // Leaves: where the author put L symbols, else on the terminal twigs.
-  if (!uses_leaf_symbols(s.system) && s.leaves.size > 0.0f) {
-    // Refuse absurd leaf counts before allocating them (an upper bound: tips and others).
-    size_t tips = graph.nodes.size();
-    std::vector<char> has_child(graph.nodes.size(), 0);
-    for (const TreeNode& n : graph.nodes)
-      if (n.parent >= 0) has_child[size_t(n.parent)] = 1;
-    for (char c : has_child) tips -= size_t(c);
-    size_t bound = tips * size_t(s.leaves.per_tip) +
-                   graph.nodes.size() * size_t(s.leaves.along) *
-                       size_t(leaves_at_node(s.leaves.phyllotaxis, s.leaves.per_node));
-    if (bound > kMaxLeavesPerModel)
-      root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
-                "could give up to " + std::to_string(bound) + " leaves, more than " +
-                    std::to_string(kMaxLeavesPerModel));
-    place_twig_leaves(graph, s.leaves, seed);
-  }
-  if (s.leaves.size <= 0.0f) graph.leaves.clear();
-  if (graph.leaves.size() > kMaxLeavesPerModel)
-    root.fail(root.has("leaves_along") ? "leaves_along" : "leaves_per_tip",
-              "gives " + std::to_string(graph.leaves.size()) + " leaves, more than " +
-                  std::to_string(kMaxLeavesPerModel));
-  return {std::move(graph)};
+  // Foliage: where the author put L symbols (the foliage stage sizes them), else the shared
+  // foliage stage places it.
+  Skeleton out{std::move(graph)};
+  out.own_leaves = uses_leaf_symbols(s.system);
+  if (!out.own_leaves) out.graph.leaves.clear();
+  if (out.graph.leaves.size() > kMaxLeavesPerModel)
+    root.fail("iterations", "gives " + std::to_string(out.graph.leaves.size()) + " L symbols, more than " +
+                                std::to_string(kMaxLeavesPerModel));
+  return out;
 }
 
 // The built-in preset: the text of scenes/species/fig2_1.toml.
@@ -173,12 +132,21 @@ step = 0.012          # meters per F (128 F per first-level segment after 7 iter
 step_jitter = 0.1
 tip_radius = 0.0015   # meters
 pipe_exponent = 2.0   # da Vinci
-leaf_size = 0.05
-leaf_size_jitter = 0.25
-leaf_angle = 35.0
+# foliage: ABOP's plant carries one leaf at every tip (blade 4-6 cm); single leaves, no young-wood
+# foliage: foliage (foliage_depth = 0).
 leaf_shape = "elliptic"
+foliage = "leaves"
+leaf_size = 0.05
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+shoot_spacing = 1.0
+foliage_depth = 0.0
+shoot_angle = 35
+leaf_angle = 55
+shoots_per_tip = 1
+shoots_per_spray = 1
 leaf_color_jitter = 0.1
-leaves_per_tip = 1
+autumn_color = [0.55, 0.34, 0.05]
 bark_color = [0.22, 0.16, 0.10]
 leaf_color = [0.14, 0.32, 0.06]
 

@@ -127,7 +127,7 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   MagneticResult r = grow_magnetic(s.fill, s.field, seed);
   TreeGraph graph = magnetic_tree(r, s);
   if (graph.nodes.size() < 2) t.fail("size", "the first particle left the domain at once");
-  Skeleton out{finish_skeleton(std::move(graph), style, seed)};
+  Skeleton out{finish_skeleton(std::move(graph), style)};
   out.meta["curves"] = r.curves.size();
   return out;
 }
@@ -159,11 +159,24 @@ simplify = 0.012
 trunk_radius = 0.14
 tip_radius = 0.004
 zeta = 0.35
-leaf_size = 0.12
-leaves_per_tip = 3
-leaves_along = 1
 ring_sides_min = 3
 ring_sides_max = 6
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05]
 bark_color = [0.45, 0.33, 0.12]
 leaf_color = [0.55, 0.45, 0.10]
 

@@ -238,7 +238,7 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   MigStats stats;
   TreeGraph graph = grow_mig(P, seed, &stats);
   if (graph.nodes.size() < 2) t.fail("volume", "no endpoint could be joined to the root");
-  Skeleton out{finish_skeleton(std::move(graph), style, seed)};
+  Skeleton out{finish_skeleton(std::move(graph), style)};
   out.meta["graph_nodes"] = stats.graph_nodes;
   out.meta["subgraphs"] = stats.subgraphs;
   out.meta["endpoints"] = stats.endpoints;
@@ -266,12 +266,24 @@ smooth = 6
 trunk_radius = 0.22
 tip_radius = 0.008
 zeta = 0.3
-leaf_size = 0.16
-leaf_size_jitter = 0.3
-leaves_per_tip = 12
-leaves_along = 2
 ring_sides_min = 3
 ring_sides_max = 8
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05]
 bark_color = [0.27, 0.21, 0.16]
 leaf_color = [0.16, 0.33, 0.08]
 

@@ -45,7 +45,7 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
     field.h_constant = t.number("h_constant", 0.0, 1.0);
   }
   const ImageTreeStyle style = read_image_tree_style(
-      t, {.tip_radius = 0.008f, .pipe_exponent = 2.3f, .leaves = {.size = 0.15f, .along = 1}});
+      t, {.tip_radius = 0.008f, .pipe_exponent = 2.3f});
   ViewSet views = read_image_input(t);
 
   DensitySolution density = solve_density(views, dp);
@@ -65,7 +65,7 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   stats["trace_joins"] = flow.trace_joins;
   stats["arrived"] = flow.arrived;
   stats["forced_joins"] = flow.forced_joins;
-  return finish_image_tree(std::move(flow.graph), style, views, seed, std::move(stats));
+  return finish_image_tree(std::move(flow.graph), style, views, std::move(stats));
 }
 
 // Built-in preset: two orthographic 128x128 masks of a synthetic crown, made in memory.
@@ -78,8 +78,23 @@ seed = 1
 crown = { shape = "ellipsoid", height = 10.0, width = 8.0, trunk_height = 3.0, trunk_radius = 0.35, branches = 5, views = 2, resolution = 128 }
 particles = 1000
 iterations = 200
-leaf_size = 0.16
-)toml";
+
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05])toml";
 }
 
 // dir/oak and dir/poplar: views.json (2 orthographic views at 90 degrees, attractor

@@ -1,8 +1,8 @@
 // Species keys of method "plantons" (all optional unless marked; ranges are checked):
 //   name, seed, model (learned model file, relative to the preset) or ground_truth (number of
 //   ground-truth trees to learn from in-process; exactly one of the two), max_organs,
-//   max_depth, segments (nodes per stem), min_radius (m), leaf_scale (× learned leaf
-//   length); plus the shared look keys (model/look_keys.h).
+//   max_depth, segments (nodes per stem), min_radius (m); plus the shared look keys
+//   (model/look_keys.h) and foliage keys (tree/foliage.h).
 #include "generators/methods/plantons/plantons_method.h"
 
 #include "generators/core/toml_reader.h"
@@ -16,7 +16,7 @@ namespace {
 
 // The method's own species keys; the registry adds the common and the look keys.
 constexpr std::string_view kKeys[] = {
-    "model", "ground_truth", "max_organs", "max_depth", "segments", "min_radius", "leaf_scale"};
+    "model", "ground_truth", "max_organs", "max_depth", "segments", "min_radius"};
 
 Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   if (t.has("model") == t.has("ground_truth"))
@@ -39,12 +39,11 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   OrganMeshing om;
   om.segments = int(t.integer("segments", 6, 1, 64));
   om.min_radius = float(t.number("min_radius", 0.002, 1e-5, 1.0));
-  double leaf_scale = t.number("leaf_scale", 1.0, 0.01, 100.0);
 
   SynthesizedTree s = synthesize_plantons(model, sp, seed);
-  for (Organ& o : s.tree.organs)
-    if (o.type == OrganType::Leaf) o.s[0] *= leaf_scale;
+  // The learned leaf organs shaped the synthesis; the model's foliage is the shared stage's.
   Skeleton out{graph_from_organs(s.tree, om)};
+  out.graph.leaves.clear();
   size_t stems = 0;
   for (const Organ& o : s.tree.organs) stems += o.type == OrganType::Stem;
   out.meta["plantons"] = model.N();
@@ -67,6 +66,22 @@ seed = 3
 ground_truth = 3
 max_organs = 2000
 max_depth = 8
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05]
 bark_color = [0.26, 0.2, 0.15]
 leaf_color = [0.15, 0.32, 0.07]
 )toml";

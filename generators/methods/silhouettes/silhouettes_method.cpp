@@ -7,8 +7,8 @@
 //   branch's style onto its siblings, "richest": the style of the sibling with most children),
 //   phyllotaxis ("none", "spiral", "decussate", "whorl3"),
 //   density (extra 3D branches per inferred one), gibbs_iterations (<= 3000), max_branches,
-//   tip_radius, pipe_exponent, leaf_size (default: the leaf silhouette's length),
-//   leaves_per_tip, leaves_along, leaf_angle; plus the shared look keys (model/look_keys.h).
+//   tip_radius, pipe_exponent; plus the shared look keys (model/look_keys.h) and foliage keys
+//   (tree/foliage.h).
 #include "generators/methods/silhouettes/silhouettes_method.h"
 
 #include <algorithm>
@@ -267,7 +267,7 @@ struct Embedding {
 constexpr std::string_view kKeys[] = {
     "drawing", "synthetic", "bottom_angle", "top_angle", "levels", "fill_overlap", "fill_samples",
     "style_copy", "phyllotaxis", "density", "gibbs_iterations", "max_branches", "tip_radius",
-    "pipe_exponent", "leaf_size", "leaves_per_tip", "leaves_along", "leaf_angle"};
+    "pipe_exponent"};
 
 Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   Drawing drawing;
@@ -416,19 +416,6 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
     if (attach >= 0) nodes_of[size_t(k)].insert(nodes_of[size_t(k)].begin(), attach);
   }
   assign_pipe_radii(graph, float(t.number("tip_radius", 0.008, 1e-5, 1.0)), float(t.number("pipe_exponent", 2.3, 1.0, 4.0)));
-  double leaf_len = 0.3;
-  for (const Stroke* s : strokes_with_role(drawing, "leaf")) {
-    glm::dvec2 lo(1e300), hi(-1e300);
-    for (glm::dvec2 p : s->points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    leaf_len = std::max(hi.x - lo.x, hi.y - lo.y);
-  }
-  LeafParams lp;
-  lp.size = float(t.number("leaf_size", leaf_len, 0.0, 10.0));
-  lp.size_jitter = 0.2f;
-  lp.per_tip = int(t.integer("leaves_per_tip", 4, 0, 16));
-  lp.along = int(t.integer("leaves_along", 0, 0, 16));
-  lp.angle_deg = float(t.number("leaf_angle", 45.0, 0.0, 180.0));
-  if (lp.size > 0.0f) place_twig_leaves(graph, lp, seed);
 
   Skeleton out{std::move(graph)};
   out.meta["silhouettes"] = {{"inferred_branches", inferred_count - 1}, {"branches_3d", h.size() - 1},
@@ -445,6 +432,22 @@ seed = 1
 synthetic = "round"
 phyllotaxis = "spiral"
 levels = 3
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05]
 bark_color = [0.24, 0.18, 0.12]
 leaf_color = [0.15, 0.33, 0.07]
 )toml";

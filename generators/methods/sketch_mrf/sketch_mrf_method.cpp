@@ -3,9 +3,8 @@
 //   it a sketch is projected in memory from synthetic_template / synthetic_view /
 //   synthetic_generations); template = "auto" (argmax of L_c + L_b) or a database name;
 //   keep_omega (true: the template's Omega is kept, 4.6.1), em_iterations, interaction (k_e);
-//   generations (propagation), max_segments, use_crown; tip_radius, pipe_exponent;
-//   leaf_size / leaves_per_tip (default: the template's leaf model), leaf_angle; plus the
-//   shared look keys (model/look_keys.h).
+//   generations (propagation), max_segments, use_crown; tip_radius, pipe_exponent; plus the
+//   shared look keys (model/look_keys.h) and foliage keys (tree/foliage.h).
 #include "generators/methods/sketch_mrf/sketch_mrf_method.h"
 
 #include "generators/methods/sketch_mrf/sketch_mrf_inference.h"
@@ -45,7 +44,7 @@ namespace {
 constexpr std::string_view kKeys[] = {
     "strokes", "synthetic_template", "synthetic_view", "synthetic_generations", "template",
     "keep_omega", "em_iterations", "interaction", "generations", "max_segments", "use_crown",
-    "tip_radius", "pipe_exponent", "leaf_size", "leaves_per_tip", "leaf_angle"};
+    "tip_radius", "pipe_exponent"};
 
 Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
 
@@ -93,12 +92,6 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   }
   assign_pipe_radii(graph, float(t.number("tip_radius", 0.01, 1e-5, 1.0)),
                     float(t.number("pipe_exponent", 2.3, 1.0, 4.0)));
-  LeafParams lp;
-  lp.size = float(t.number("leaf_size", tpl.leaf_size, 0.0, 10.0));
-  lp.size_jitter = 0.2f;
-  lp.per_tip = int(t.integer("leaves_per_tip", tpl.leaves_per_tip, 0, 16));
-  lp.angle_deg = float(t.number("leaf_angle", 45.0, 0.0, 180.0));
-  if (lp.size > 0.0f) place_twig_leaves(graph, lp, seed);
 
   Skeleton out{std::move(graph)};
   nlohmann::json& info = out.meta["sketch_mrf"];
@@ -122,6 +115,22 @@ synthetic_view = 1
 synthetic_generations = 3
 template = "auto"
 generations = 3
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05]
 bark_color = [0.20, 0.15, 0.11]
 leaf_color = [0.13, 0.30, 0.05]
 )toml";

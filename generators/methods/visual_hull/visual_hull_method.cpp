@@ -34,7 +34,7 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   gp.fill_target = t.number("fill_target", gp.fill_target, 0.0, 1.0);
   gp.max_nodes = size_t(t.integer("max_nodes", int64_t(gp.max_nodes), 100, 500000));
   const ImageTreeStyle style = read_image_tree_style(
-      t, {.tip_radius = 0.006f, .pipe_exponent = 2.4f, .leaves = {.size = 0.12f, .along = 1}});
+      t, {.tip_radius = 0.006f, .pipe_exponent = 2.4f});
   ViewSet views = read_image_input(t);
 
   gp.internode = internode > 0.0 ? internode : 0.035 * views.bounds.size().y;
@@ -56,7 +56,7 @@ Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   for (const YearReport& r : reports) pruned += r.pruned;
   stats["pruned"] = pruned;
   stats["fill"] = reports.empty() ? 0.0 : reports.back().fill;
-  return finish_image_tree(std::move(graph), style, views, seed, std::move(stats));
+  return finish_image_tree(std::move(graph), style, views, std::move(stats));
 }
 
 // Built-in preset: a synthetic lobed crown rendered into 8 perspective masks in memory.
@@ -68,9 +68,23 @@ name = "visual_hull_lobes"
 seed = 1
 crown = { shape = "lobes", height = 8.0, width = 7.0, trunk_height = 2.5, trunk_radius = 0.3, views = 8, resolution = 128, camera = "perspective" }
 years = 7
-leaf_size = 0.14
-leaves_along = 1
-)toml";
+
+# foliage: a method demo: the shared foliage model, blade 6-10 cm on shoots of 25-35 cm.
+leaf_shape = "ovate"
+foliage = "shoots"
+leaf_size = 0.08
+leaf_size_jitter = 0.2
+leaf_phyllotaxis = "alternate"
+leaves_per_shoot = 6
+shoot_length = 0.3
+shoot_spacing = 0.1
+foliage_depth = 2.0
+shoot_angle = 50
+leaf_angle = 55
+shoots_per_tip = 3
+shoots_per_spray = 3
+leaf_color_jitter = 0.1
+autumn_color = [0.55, 0.34, 0.05])toml";
 }
 
 // dir/ellipsoid and dir/cone: views.json + 8 perspective 128x128 masks each.
