@@ -14,6 +14,7 @@ int run_gallery(const GalleryArgs& args) {
   GalleryOptions options;
   options.size = args.size;
   options.columns = args.columns;
+  options.common_scale = !args.own_scale;
   CommandContext context(context_options(args.device, false));
   std::vector<GalleryEntry> entries;
   FrameImage sheet;

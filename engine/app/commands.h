@@ -65,6 +65,7 @@ struct GalleryArgs {
   std::string species_dir = "scenes/species";
   uint32_t size = 256;
   uint32_t columns = 0;  // 0: about square
+  bool own_scale = false;  // each tree fills its cell (no common scale, no human figure)
   std::string device;
 };
 int run_gallery(const GalleryArgs& args);

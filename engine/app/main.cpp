@@ -99,6 +99,8 @@ Command add_gallery(CLI::App& cli) {
   cmd->add_option("--species-dir", args->species_dir, "Folder of species presets (default: scenes/species)");
   cmd->add_option("--size", args->size, "Pixels per preset")->check(CLI::Range(32, 2048));
   cmd->add_option("--columns", args->columns, "Presets per row (default: about square)")->check(CLI::Range(1, 64));
+  cmd->add_flag("--own-scale", args->own_scale,
+                "Frame each tree alone (default: one scale for all, beside a 1.8 m human figure)");
   cmd->add_option("--device", args->device, kDeviceHelp);
   return command(cmd, args, app::run_gallery);
 }

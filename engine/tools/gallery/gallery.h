@@ -1,6 +1,7 @@
 // `forest gallery`: every species preset of a folder generated in-process (each with its
 // own seed), rendered by the engine from the same three-quarter view, labelled with its name
-// and laid out on one contact sheet.
+// and laid out on one contact sheet. By default every cell has the same camera (framing the
+// tallest tree) and a 1.8 m human silhouette beside the trunk, so sizes compare at a glance.
 #pragma once
 #include <filesystem>
 #include <functional>
@@ -17,6 +18,7 @@ struct GalleryOptions {
   float azimuth_deg = 35.0f;
   float elevation_deg = 12.0f;
   uint32_t samples = 4;
+  bool common_scale = true;  // one camera for all cells, with a human figure; false: each tree fills its cell
 };
 
 struct GalleryEntry {
