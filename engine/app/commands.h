@@ -87,6 +87,18 @@ struct ReportArgs {
 };
 int run_report(const ReportArgs& args);
 
+struct MeasureArgs {
+  std::string species;  // a preset: habit from its skeleton, coverage and depth from its model ...
+  std::string model;    // ... or a .glb: coverage and depth only
+  std::optional<uint64_t> seed;
+  std::string json;   // also write the numbers here
+  std::string masks;  // existing folder: the leaf masks as leaves_az<deg>.png
+  uint32_t resolution = 512;
+  std::string device;
+  bool validate = false;
+};
+int run_measure(const MeasureArgs& args);
+
 struct RenderArgs {
   std::string scene;
   std::string out;

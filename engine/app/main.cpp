@@ -126,6 +126,22 @@ Command add_report(CLI::App& cli) {
   return command(cmd, args, app::run_report);
 }
 
+Command add_measure(CLI::App& cli) {
+  auto args = std::make_shared<app::MeasureArgs>();
+  app::MeasureArgs& a = *args;
+  auto* cmd = cli.add_subcommand("measure", "Habit, leaf coverage of 4 side views and leaf depth in the crown of one tree");
+  auto* species = cmd->add_option("--species", a.species, "Species preset (TOML): all metrics")->check(CLI::ExistingFile);
+  auto* model = cmd->add_option("--model", a.model, "Model (.glb): coverage and depth (no skeleton, no habit)")->check(CLI::ExistingFile);
+  species->excludes(model);
+  cmd->add_option("--seed", a.seed, "Random seed (overrides the preset's)");
+  cmd->add_option("--json", a.json, "Also write the numbers as JSON");
+  cmd->add_option("--masks", a.masks, "Existing folder: write the leaf masks (leaves_az<deg>.png)");
+  cmd->add_option("--resolution", a.resolution, "Pixels of each square view")->check(CLI::Range(kMinBakeResolution, kMaxBakeResolution));
+  cmd->add_option("--device", a.device, kDeviceHelp);
+  cmd->add_flag("--validate", a.validate, kValidateHelp);
+  return command(cmd, args, app::run_measure);
+}
+
 Command add_render(CLI::App& cli) {
   struct Parsed {
     app::RenderArgs args;
@@ -217,7 +233,7 @@ Command add_bench(CLI::App& cli) {
 std::vector<Command> add_commands(CLI::App& cli) {
   std::vector<Command> commands;
   for (Command (*add)(CLI::App&) : {add_info, add_generate, add_make_inputs, add_learn, add_preview, add_gallery,
-                                    add_bake, add_report, add_render, add_compare, add_walk, add_bench})
+                                    add_bake, add_report, add_measure, add_render, add_compare, add_walk, add_bench})
     commands.push_back(add(cli));
   return commands;
 }

@@ -109,7 +109,9 @@ void Renderer::record_pyramid(VkCommandBuffer cmd) {
 
 bool Renderer::camera_cut(const CameraMatrices& cm, const CameraDesc& camera, const FrameSettings& settings) const {
   if (settings.camera_cut || !pyramid_valid_) return true;
-  if (camera.fov_deg != pyramid_camera_.fov_deg || camera.near != pyramid_camera_.near) return true;
+  if (camera.fov_deg != pyramid_camera_.fov_deg || camera.near != pyramid_camera_.near ||
+      camera.ortho_height != pyramid_camera_.ortho_height)
+    return true;
   if (glm::distance(cm.position, pyramid_camera_.position) > kCutDistance) return true;
   glm::vec3 before = glm::normalize(pyramid_camera_.target - pyramid_camera_.position);
   return glm::dot(before, cm.forward) < std::cos(glm::radians(kCutAngleDeg));
@@ -280,7 +282,11 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
   fd.sky_horizon = glm::vec4(sky.horizon, 1.0f);
   fd.fog = glm::vec4(sky.horizon, sky.fog_density);
   for (size_t i = 0; i < 6; ++i) fd.frustum[i] = cm.frustum[i];
-  float pixels_per_meter = float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
+  // The cull pass divides by the distance: an orthographic camera's constant scale is
+  // given as the perspective one that matches it at the target.
+  float pixels_per_meter = camera.ortho_height > 0.0f
+                               ? float(height_) / camera.ortho_height * glm::distance(camera.position, camera.target)
+                               : float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
   fd.lod = glm::vec4(pixels_per_meter, scene_.desc.lod_error_pixels, 0.0f, 0.0f);
   fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition, settings.fixed_lambda, settings.fixed_scale);
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
@@ -330,6 +336,7 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   std::memcpy(slot.frame.mapped, &fd, sizeof(fd));
   DrawList list;
   list.background = !settings.mask;
+  list.branches = settings.branches;
   list.wireframe = settings.wireframe && has_wireframe() && !settings.mask;
   list.keep_depth = settings.occlusion;
   // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.

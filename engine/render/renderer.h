@@ -38,6 +38,7 @@ struct FrameSettings {
   float fixed_lambda = 1.0f;  // PruneMode::fixed
   float fixed_scale = 1.0f;   // PruneMode::fixed: leaf area scale s
   bool mask = false;          // coverage only: trees white on black, no sky or terrain
+  bool branches = true;       // false: leaves alone, no bark (leaf coverage measurements)
   bool lambda_view = false;
   // Triangle edges instead of filled triangles (terrain, bark, leaf cards); ignored when the
   // device lacks fillModeNonSolid (Renderer::has_wireframe()).

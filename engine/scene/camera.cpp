@@ -1,5 +1,6 @@
 #include "engine/scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -13,12 +14,22 @@ CameraMatrices camera_matrices(const CameraDesc& camera, float aspect) {
   // Looking straight up or down: pick another up vector so lookAt stays defined.
   glm::vec3 up = std::abs(m.forward.y) > 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
   m.view = glm::lookAt(camera.position, camera.target, up);
-  float f = 1.0f / std::tan(glm::radians(camera.fov_deg) * 0.5f);
   m.proj = glm::mat4(0.0f);
-  m.proj[0][0] = f / aspect;
-  m.proj[1][1] = -f;  // Vulkan's framebuffer y points down
-  m.proj[2][3] = -1.0f;
-  m.proj[3][2] = camera.near;
+  if (camera.ortho_height > 0.0f) {
+    // Orthographic, reversed Z over [near, far]: depth = (far + z_view) / (far − near).
+    float h = 2.0f / camera.ortho_height, range = std::max(camera.far - camera.near, 1e-6f);
+    m.proj[0][0] = h / aspect;
+    m.proj[1][1] = -h;
+    m.proj[2][2] = 1.0f / range;
+    m.proj[3][2] = camera.far / range;
+    m.proj[3][3] = 1.0f;
+  } else {
+    float f = 1.0f / std::tan(glm::radians(camera.fov_deg) * 0.5f);
+    m.proj[0][0] = f / aspect;
+    m.proj[1][1] = -f;  // Vulkan's framebuffer y points down
+    m.proj[2][3] = -1.0f;
+    m.proj[3][2] = camera.near;
+  }
   m.view_proj = m.proj * m.view;
 
   // Gribb-Hartmann on the rows of view_proj (Vulkan clip: -w<=x,y<=w, 0<=z<=w).

@@ -1,5 +1,6 @@
 // Camera matrices: right-handed view, +Y up, reversed-Z infinite perspective for Vulkan
-// (depth 1 at the near plane, 0 at infinity: even precision over a kilometer of forest).
+// (depth 1 at the near plane, 0 at infinity: even precision over a kilometer of forest), or
+// with CameraDesc::ortho_height an orthographic projection (measurements).
 #pragma once
 #include <array>
 

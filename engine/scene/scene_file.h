@@ -20,6 +20,10 @@ struct CameraDesc {
   float fov_deg = 50.0f;  // vertical
   float near = 0.1f;
   float far = 2000.0f;    // culling distance
+  // > 0: an orthographic camera this many metres tall (width from the aspect), depth linear
+  // from `near` (1) to `far` (0); fov_deg is then unused. Set in code by measurements
+  // (engine/tools/measure/), not read from scene files.
+  float ortho_height = 0.0f;
 };
 
 // One keyframe of a camera path ([[path.key]]).
