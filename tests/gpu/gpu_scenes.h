@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/scene/scene.h"
+#include "generators/core/text_file.h"
 #include "generators/species/registry.h"
 #include "tests/common/test_files.h"
 
@@ -86,6 +87,20 @@ inline Scene scene_of(SceneDesc desc, std::vector<TreeModel> models) {
 // The broadleaf preset at seed 11, as the test scenes' [[species]] make it (not baked).
 inline TreeModel broadleaf() {
   return generate_from_species(kSourceDir + "/scenes/species/broadleaf.toml", GenerateOptions{11});
+}
+
+// The broadleaf skeleton with coarse foliage: single 0.32 m leaves (several pixels wide at
+// every test resolution), for checks of the measurement itself rather than of the foliage.
+inline TreeModel coarse_broadleaf() {
+  std::string text = read_text_file(kSourceDir + "/scenes/species/broadleaf.toml");
+  auto set = [&](const std::string& key, const std::string& value) {
+    size_t at = text.find("\n" + key + " = ") + 1;
+    text.replace(at, text.find('\n', at) - at, key + " = " + value);
+  };
+  set("foliage", "\"leaves\"");
+  set("leaf_size", "0.32");
+  set("shoot_spacing", "0.6");
+  return generate_from_species_text(text, kSourceDir + "/scenes/species/broadleaf.toml", GenerateOptions{11});
 }
 
 }  // namespace forest::test
