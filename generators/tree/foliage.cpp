@@ -113,20 +113,24 @@ void place_foliage(TreeGraph& graph, const FoliageKeys& k, uint64_t seed) {
       glm::vec3 facing = pos - inside;
       facing = glm::length(facing) > 1e-6f ? glm::normalize(facing) : glm::vec3(0, 1, 0);
       // Shoots turn their upper side to the light: outward and up.
-      facing = glm::normalize(facing + glm::vec3(0.0f, 0.6f, 0.0f));
+      facing = glm::normalize(facing + glm::vec3(0.0f, 0.15f, 0.0f));
       LeafPlacement leaf = orient_leaf(pos, axis, float(azimuth), tilt, facing, size, reference);
       leaf.color = leaf_color_variation(rng, jitter);
       graph.leaves.push_back(leaf);
-      // The next shoot of the spray grows from this one's end, continuing its direction
-      // bent a little toward the horizontal.
+      // The next shoot of the spray grows from this one's end, turned to alternate sides in
+      // the shoot's plane (a twig system ramifies sympodially, in a zigzag) and bent a little
+      // toward the horizontal.
       glm::vec3 dir = leaf.rotation * glm::vec3(0.0f, 1.0f, 0.0f);
-      pos += dir * (0.85f * size);
+      const glm::vec3 side = leaf.rotation * glm::vec3(1.0f, 0.0f, 0.0f);
+      pos += dir * (0.8f * size);
+      const float turn = (m % 2 ? -1.0f : 1.0f) * (0.45f + 0.25f * float(rng.uniform()));
+      dir = glm::normalize(dir * std::cos(turn) + side * std::sin(turn));
       glm::vec3 flat(dir.x, 0.0f, dir.z);
-      if (glm::length(flat) > 1e-4f) dir = glm::normalize(dir + 0.25f * (glm::normalize(flat) - dir));
+      if (glm::length(flat) > 1e-4f) dir = glm::normalize(dir + 0.2f * (glm::normalize(flat) - dir));
       reference = any_perpendicular(dir);
       axis = dir;
-      tilt = 0.35f * tilt0 * float(rng.uniform());
-      azimuth = rng.uniform(0.0, 2.0 * kPi);
+      tilt = 0.0f;
+      azimuth = 0.0;
     }
   };
 
