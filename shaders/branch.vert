@@ -22,11 +22,12 @@ void main() {
   vec3 world = rotate_yaw(in_position, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
   out_world = world;
   out_normal = rotate_yaw(in_normal, inst.yaw_cos_sin);
-  // Darker toward the trunk base, and bark stripes along v for a little texture.
-  float stripes = 0.85 + 0.15 * sin(in_uv.y * 6.2831 * 3.0 + in_uv.x * 12.566);
-  out_albedo = m.bark_color.rgb * stripes * unpack_tint(inst.tint).a;
+  // The bark texture (tree.frag) times the material colour: white when the texture holds
+  // the colour, the model's bark_color on the neutral layer. The tint's alpha varies the
+  // brightness per instance.
+  out_albedo = m.bark_color.rgb * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
-  out_uv_layer = vec3(in_uv, 0.0);
+  out_uv_layer = vec3(in_uv, float(m.bark_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda) * 0.6;
   gl_Position = frame.view_proj * vec4(world, 1.0);
 }

@@ -36,6 +36,8 @@ using mat4 = glm::mat4;
 #define BINDING_INSTANCE_STATE 13  // InstanceState: occlusion feedback kept across frames
 #define BINDING_TAIL_JOBS 14       // TailJob per partly occluded tree (cull.comp -> tail_cull.comp)
 #define BINDING_TAIL_LEAVES 15     // leaf indices of the visible tails, in priority order
+#define BINDING_BARK_ALBEDO 16     // sampler2DArray: bark colour, one layer per bark (Model.bark_texture_layer)
+#define BINDING_BARK_NORMALS 17    // sampler2DArray: bark tangent-space normal maps, the same layers
 
 // Descriptor bindings of depth_pyramid.comp's set (one set per pyramid level).
 #define PYRAMID_BINDING_SOURCE 0       // sampler2D: the depth buffer (level 0) or the level above
@@ -73,6 +75,7 @@ using mat4 = glm::mat4;
 
 #define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
 #define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
+#define BARK_TEXTURE_SIZE 256  // every bark's albedo and normal map are one layer of two 2D arrays
 
 // FrameData.occlusion: depth-buffer occlusion feedback (Neubert 2012 §7.4).
 #define OCCLUSION_ON 1   // test hull samples against the previous frame's pyramid
@@ -120,7 +123,7 @@ GPU_STRUCT Instance {
 // One tree model (asset); its leaves are contiguous in leaves[] in priority order.
 GPU_STRUCT Model {
   vec4 bounding_sphere;      // model space, xyz center, w radius
-  vec4 bark_color;           // linear rgb
+  vec4 bark_color;           // linear rgb, times the bark albedo texture (white when it holds the colour)
   vec4 leaf_color;           // linear rgb
   // Branch LOD chain: [0] full detail; lod_error = model-space error in meters, non-decreasing.
   uvec4 lod_first_index;
@@ -140,6 +143,7 @@ GPU_STRUCT Model {
   uint sample_count;
   float occlusion_margin;    // model-space meters a sample is moved toward the camera before the test
   float card_radius;         // farthest vertex of the leaf card from its origin (leaf scale 1)
+  uint bark_texture_layer;   // layer of BINDING_BARK_ALBEDO / _NORMALS (0: neutral, untextured)
 };
 
 // One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.

@@ -2,13 +2,17 @@
 #extension GL_GOOGLE_include_directive : require
 // Bark and leaves: two-sided diffuse with leaf translucency, fog. Leaves (specialization
 // LEAF) take color and coverage from the model's leaf texture; with MSAA the coverage goes
-// to alpha-to-coverage, sharpened so edges stay crisp at every mip level.
+// to alpha-to-coverage, sharpened so edges stay crisp at every mip level; their back faces
+// are the paler undersides. Bark takes its colour from the bark albedo array and perturbs
+// its normal by the bark normal map, in a tangent frame from screen-space derivatives.
 #include "common.glsl"
 
 layout(constant_id = SPEC_LEAF) const bool LEAF = false;
 layout(constant_id = SPEC_ALPHA_TO_COVERAGE) const bool ALPHA_TO_COVERAGE = false;
 
 layout(set = 0, binding = BINDING_LEAF_TEXTURES) uniform sampler2DArray leaf_textures;
+layout(set = 0, binding = BINDING_BARK_ALBEDO) uniform sampler2DArray bark_albedo;
+layout(set = 0, binding = BINDING_BARK_NORMALS) uniform sampler2DArray bark_normals;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
@@ -16,6 +20,25 @@ layout(location = 2) in vec3 in_albedo;
 layout(location = 3) in vec2 in_ao_translucency;
 layout(location = 4) in vec3 in_uv_layer;
 layout(location = 0) out vec4 out_color;
+
+// The normal n perturbed by tangent-space normal t (glTF convention: +X along +u, +Y along
+// −v, +Z along n). The frame comes from the derivatives of position and uv (C. Schüler,
+// "Normal mapping without precomputed tangents", 2013): no tangent attribute, right for
+// mirrored or sheared uv. Its vectors are the surface gradients of u and v times the
+// determinant of the screen-space basis, which is negative in Vulkan's y-down window space
+// (and on back faces), hence the sign.
+vec3 perturb_normal(vec3 n, vec3 p, vec2 uv, vec3 t) {
+  vec3 dp1 = dFdx(p), dp2 = dFdy(p);
+  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+  vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
+  float orientation = dot(n, cross(dp1, dp2)) < 0.0 ? -1.0 : 1.0;
+  vec3 du = (dp2perp * duv1.x + dp1perp * duv2.x) * orientation;  // ∝ the surface gradient of u
+  vec3 dv = (dp2perp * duv1.y + dp1perp * duv2.y) * orientation;
+  float len2 = max(dot(du, du), dot(dv, dv));
+  if (!(len2 > 1e-30)) return n;  // no uv change across the pixel: keep the mesh normal
+  float s = inversesqrt(len2);
+  return normalize(mat3(du * s, -dv * s, n) * t);
+}
 
 void main() {
   vec3 albedo = in_albedo;
@@ -34,5 +57,16 @@ void main() {
   }
   vec3 n = normalize(in_normal);
   if (!gl_FrontFacing) n = -n;
+  const bool lambda_view = (frame.view_flags & VIEW_LAMBDA) != 0;
+  if (LEAF && !gl_FrontFacing && !lambda_view) {
+    // The underside (abaxial side) of a leaf is paler and less saturated than the upper one:
+    // fewer chloroplasts under a looser tissue, often hairs or wax.
+    float luma = dot(albedo, vec3(0.2126, 0.7152, 0.0722));
+    albedo = mix(albedo, vec3(luma), 0.2) * vec3(1.25, 1.25, 1.1);
+  }
+  if (!LEAF && !lambda_view) {
+    albedo *= texture(bark_albedo, in_uv_layer).rgb;
+    n = perturb_normal(n, in_world, in_uv_layer.xy, texture(bark_normals, in_uv_layer).xyz * 2.0 - 1.0);
+  }
   out_color = vec4(shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y), clamp(alpha, 0.0, 1.0));
 }

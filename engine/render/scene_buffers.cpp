@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/occlusion/occlusion_samples.h"
+#include "engine/render/bark_textures.h"
 #include "engine/render/leaf_textures.h"
 #include "generators/asset/pr_tables.h"
 
@@ -77,16 +78,38 @@ void add_bake_data(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
   a.hull_samples.insert(a.hull_samples.end(), occ.samples.begin(), occ.samples.end());
 }
 
-VkSampler create_leaf_sampler(vk::Context& ctx) {
+// Trilinear; leaf cards clamp (their texture is one leaf), bark repeats (its tiles).
+VkSampler create_trilinear_sampler(vk::Context& ctx, VkSamplerAddressMode address) {
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = VK_FILTER_LINEAR;
   sci.minFilter = VK_FILTER_LINEAR;
   sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = address;
   sci.maxLod = VK_LOD_CLAMP_NONE;
   VkSampler sampler = VK_NULL_HANDLE;
   VK_CHECK(vkCreateSampler(ctx.device, &sci, nullptr, &sampler));
   return sampler;
+}
+
+// The leaf texture array (one layer per model) and the bark arrays (one layer per distinct
+// bark; a textured model's colour is in its albedo, so its bark_color factor becomes white).
+void upload_textures(vk::Context& ctx, const Scene& scene, std::vector<gpu::Model>& models, SceneBuffers& b) {
+  std::vector<const Image8*> textures;
+  std::vector<const TreeModel*> barks;
+  for (const TreeModel& tm : scene.models) textures.push_back(&tm.leaf_texture), barks.push_back(&tm);
+  TextureArrayData tex = build_leaf_texture_array(textures, LEAF_TEXTURE_SIZE);
+  b.leaf_textures = vk::create_texture_array(ctx, tex.size, tex.layers, tex.mips, VK_FORMAT_R8G8B8A8_SRGB, tex.texels);
+  b.leaf_sampler = create_trilinear_sampler(ctx, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  BarkTextureArrays bark = build_bark_texture_arrays(barks, BARK_TEXTURE_SIZE);
+  for (size_t i = 0; i < models.size(); ++i) {
+    models[i].bark_texture_layer = bark.layer[i];
+    if (bark.coloured[i]) models[i].bark_color = glm::vec4(1.0f);
+  }
+  const TextureArrayData& al = bark.albedo;
+  const TextureArrayData& nm = bark.normals;
+  b.bark_albedo = vk::create_texture_array(ctx, al.size, al.layers, al.mips, VK_FORMAT_R8G8B8A8_SRGB, al.texels);
+  b.bark_normals = vk::create_texture_array(ctx, nm.size, nm.layers, nm.mips, VK_FORMAT_R8G8B8A8_UNORM, nm.texels);
+  b.bark_sampler = create_trilinear_sampler(ctx, VK_SAMPLER_ADDRESS_MODE_REPEAT);
 }
 
 }  // namespace
@@ -111,11 +134,7 @@ SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
   b.instance_count = uint32_t(scene.instances.size());
   for (const gpu::Instance& inst : scene.instances) b.instance_leaves += scene.models[inst.model].leaves.size();
 
-  std::vector<const Image8*> textures;
-  for (const TreeModel& tm : scene.models) textures.push_back(&tm.leaf_texture);
-  TextureArrayData tex = build_leaf_texture_array(textures, LEAF_TEXTURE_SIZE);
-  b.leaf_textures = vk::create_texture_array(ctx, tex.size, tex.layers, tex.mips, VK_FORMAT_R8G8B8A8_SRGB, tex.texels);
-  b.leaf_sampler = create_leaf_sampler(ctx);
+  upload_textures(ctx, scene, a.models, b);
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   b.vertices = vk::create_buffer_from<Vertex>(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, a.vertices);
@@ -131,8 +150,9 @@ SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
 void destroy_scene_buffers(vk::Context& ctx, SceneBuffers& b) {
   for (vk::Buffer* buffer : {&b.vertices, &b.indices, &b.instances, &b.models, &b.leaves, &b.prune_tables, &b.hull_samples})
     vk::destroy_buffer(ctx, *buffer);
-  vk::destroy_image(ctx, b.leaf_textures);
+  for (vk::Image* image : {&b.leaf_textures, &b.bark_albedo, &b.bark_normals}) vk::destroy_image(ctx, *image);
   vkDestroySampler(ctx.device, b.leaf_sampler, nullptr);
+  vkDestroySampler(ctx.device, b.bark_sampler, nullptr);
   b = {};
 }
 
@@ -142,7 +162,9 @@ void write_scene_bindings(DescriptorWrites& w, const SceneBuffers& b) {
       .buffer(BINDING_LEAVES, b.leaves)
       .buffer(BINDING_PRUNE_TABLES, b.prune_tables)
       .buffer(BINDING_HULL_SAMPLES, b.hull_samples)
-      .image(BINDING_LEAF_TEXTURES, b.leaf_sampler, b.leaf_textures.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+      .image(BINDING_LEAF_TEXTURES, b.leaf_sampler, b.leaf_textures.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      .image(BINDING_BARK_ALBEDO, b.bark_sampler, b.bark_albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      .image(BINDING_BARK_NORMALS, b.bark_sampler, b.bark_normals.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 }  // namespace forest

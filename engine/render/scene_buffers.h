@@ -1,7 +1,8 @@
 // The scene on the GPU, uploaded once: one vertex and index buffer for the terrain and every
 // model's branch LODs and leaf card, the instances, the models, their leaves in priority
-// order, their PR tables, their occlusion samples and the leaf texture array. Nothing here
-// changes per frame; these are the bindings shaders/common.glsl declares for every stage.
+// order, their PR tables, their occlusion samples, the leaf texture array and the bark
+// texture arrays. Nothing here changes per frame; these are the bindings shaders/common.glsl
+// declares for every stage.
 #pragma once
 #include <cstdint>
 
@@ -16,6 +17,8 @@ struct SceneBuffers {
   vk::Buffer instances, models, leaves, prune_tables, hull_samples;
   vk::Image leaf_textures;  // one layer per model
   VkSampler leaf_sampler = VK_NULL_HANDLE;
+  vk::Image bark_albedo, bark_normals;  // one layer per distinct bark, layer 0 neutral
+  VkSampler bark_sampler = VK_NULL_HANDLE;  // repeat, trilinear
   uint32_t instance_count = 0;
   uint32_t terrain_index_count = 0;  // the terrain is the first mesh of `indices`
   uint64_t instance_leaves = 0;      // Σ over instances of its model's leaf count
@@ -33,6 +36,8 @@ inline constexpr Binding kSceneBindings[] = {
     {BINDING_PRUNE_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages},
     {BINDING_HULL_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {BINDING_LEAF_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+    {BINDING_BARK_ALBEDO, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+    {BINDING_BARK_NORMALS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
 };
 
 SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene);

@@ -135,10 +135,13 @@ struct Reader {
 
   // The base color texture of a material as RGBA8; empty when it has none.
   Image8 base_color_texture(const tinygltf::Material* mat) const {
+    return mat ? texture(mat, mat->pbrMetallicRoughness.baseColorTexture.index) : Image8{};
+  }
+
+  // Texture t of a material as RGBA8; empty when there is none (no material, t < 0).
+  Image8 texture(const tinygltf::Material* mat, int t) const {
     Image8 out;
-    if (!mat) return out;
-    int t = mat->pbrMetallicRoughness.baseColorTexture.index;
-    if (t < 0) return out;
+    if (!mat || t < 0) return out;
     if (size_t(t) >= model.textures.size()) fail("material '" + mat->name + "': texture index out of range");
     int src = model.textures[size_t(t)].source;
     if (src < 0 || size_t(src) >= model.images.size()) fail("texture " + std::to_string(t) + ": image index out of range");
@@ -187,6 +190,29 @@ struct Reader {
     return out;
   }
 
+  // The bark material's textures and, from its extras.forest_bark, the look's colour (the
+  // factor is white when the texture holds the colour) and the tile size.
+  void bark(const tinygltf::Node& node, TreeModel& tree) const {
+    if (node.mesh < 0 || size_t(node.mesh) >= model.meshes.size()) return;
+    const tinygltf::Material* mat = material(model.meshes[size_t(node.mesh)]);
+    if (!mat) return;
+    tree.bark_texture = texture(mat, mat->pbrMetallicRoughness.baseColorTexture.index);
+    tree.bark_normal = texture(mat, mat->normalTexture.index);
+    if (!mat->extras.IsObject() || !mat->extras.Has("forest_bark")) return;
+    const nlohmann::json b = to_json(mat->extras.Get("forest_bark"));
+    auto number = [](const nlohmann::json& j) {
+      return j.is_number() && std::isfinite(j.get<double>()) && j.get<double>() >= 0.0 && j.get<double>() <= 1e6;
+    };
+    const char* what = "material 'bark': extras.forest_bark needs a color of 3 numbers in [0, 1e6] and tile_meters";
+    if (!b.is_object() || !b.contains("color") || !b["color"].is_array() || b["color"].size() != 3 ||
+        !std::all_of(b["color"].begin(), b["color"].end(), number) || !b.contains("tile_meters") ||
+        !number(b["tile_meters"]))
+      fail(what);
+    tree.bark_color = glm::vec3(float(b["color"][0].get<double>()), float(b["color"][1].get<double>()),
+                                float(b["color"][2].get<double>()));
+    tree.bark_tile_meters = float(b["tile_meters"].get<double>());
+  }
+
   std::vector<LeafPlacement> instances(const tinygltf::Node& node) const {
     std::vector<LeafPlacement> out;
     auto ext = node.extensions.find(kInstancing);
@@ -208,11 +234,12 @@ struct Reader {
     std::vector<float> s = floats(index("SCALE"), TINYGLTF_TYPE_VEC3, "SCALE");
     size_t n = t.size() / 3;
     if (r.size() / 4 != n || s.size() / 3 != n) fail("instance attribute counts differ");
-    std::vector<float> color;  // optional per-leaf color multiplier
-    if (attrs.Has("_COLOR")) {
-      color = floats(index("_COLOR"), TINYGLTF_TYPE_VEC3, "_COLOR");
-      if (color.size() / 3 != n) fail("instance attribute counts differ");
-    }
+    std::vector<float> color;  // optional per-leaf color multiplier: _COLOR_0 (or _COLOR, older assets)
+    for (const char* key : {"_COLOR_0", "_COLOR"})
+      if (color.empty() && attrs.Has(key)) {
+        color = floats(index(key), TINYGLTF_TYPE_VEC3, key);
+        if (color.size() / 3 != n) fail("instance attribute counts differ");
+      }
     out.resize(n);
     for (size_t i = 0; i < n; ++i) {
       out[i].position = {t[3 * i], t[3 * i + 1], t[3 * i + 2]};
@@ -320,6 +347,7 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
   }
   if (!branches) r.fail("no node named 'branches'");
   tree.branches = r.mesh(*branches, &tree.bark_color);
+  r.bark(*branches, tree);
   if (leaves) {
     tree.leaf_card = r.mesh(*leaves, &tree.leaf_color);
     tree.leaves = r.instances(*leaves);

@@ -2,7 +2,7 @@
 //   scene 0 -> node "tree" -> children "branches" (mesh "branches", material "bark")
 //                                      "leaves"   (mesh "leaf_card", material "leaf",
 //                                                  EXT_mesh_gpu_instancing T/R/S accessors
-//                                                  and _COLOR: per-leaf color multiplier)
+//                                                  and _COLOR_0: per-leaf color multiplier)
 //   nodes "branches_lod1", "branches_lod2", ... (meshes of the same names, material "bark",
 //     mesh extras {"forest_lod": {"level": i, "error": meters}}): the simplified branch LODs.
 //     They are not in the scene, so a generic viewer shows LOD0 only; decode_glb finds them
@@ -12,6 +12,11 @@
 //   material "leaf": baseColorTexture = the leaf texture (PNG in the binary chunk),
 //     alphaMode MASK, alphaCutoff 0.5 (glTF's default, so tinygltf writes it implicitly),
 //     double sided
+//   material "bark", when the model has bark textures: baseColorFactor white,
+//     baseColorTexture = the bark albedo (the whole colour), normalTexture = the bark normal
+//     map, both with a repeating trilinear sampler, TANGENT on the bark meshes; extras
+//     {"forest_bark": {"color": bark_color, "tile_meters": ...}} keep the look's colour and
+//     the tile size. Without textures: baseColorFactor = bark_color, as before.
 //   root extras.forest = TreeModel::meta plus TreeModel::bake (bake_to_json, bake_data.cpp)
 // One buffer, one tightly packed buffer view per accessor (so no byteStride anywhere).
 #include "generators/asset/asset_io.h"
@@ -25,6 +30,7 @@
 #include <stdexcept>
 
 #include "generators/asset/bake_data.h"
+#include "generators/mesh/mesh_tangents.h"
 
 namespace forest {
 
@@ -132,37 +138,67 @@ struct Writer {
     return int(model.materials.size() - 1);
   }
 
-  // An RGBA8 image as a PNG in the binary chunk, with a trilinear, clamped sampler.
-  int add_texture(const std::string& name, const Image8& img) {
+  // The trilinear sampler with this wrap mode (one per mode).
+  int sampler(int wrap) {
+    for (size_t i = 0; i < model.samplers.size(); ++i)
+      if (model.samplers[i].wrapS == wrap) return int(i);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = sampler.wrapT = wrap;
+    model.samplers.push_back(sampler);
+    return int(model.samplers.size() - 1);
+  }
+
+  // An RGBA8 image as a PNG in the binary chunk (`channels` 4, or 3 for an opaque one), with
+  // a trilinear sampler that clamps (leaf) or repeats (bark).
+  int add_texture(const std::string& name, const Image8& img, int wrap = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE,
+                  int channels = 4) {
     std::vector<unsigned char> png;
     auto sink = [](void* ctx, void* data, int size) {
       auto* out = static_cast<std::vector<unsigned char>*>(ctx);
       const auto* p = static_cast<const unsigned char*>(data);
       out->insert(out->end(), p, p + size);
     };
-    if (!stbi_write_png_to_func(sink, &png, int(img.width), int(img.height), 4, img.rgba.data(),
-                                int(img.width) * 4))
+    std::vector<uint8_t> rgb;
+    const uint8_t* pixels = img.rgba.data();
+    if (channels == 3) {
+      for (size_t i = 0; i < img.rgba.size(); i += 4) rgb.insert(rgb.end(), {img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]});
+      pixels = rgb.data();
+    }
+    if (!stbi_write_png_to_func(sink, &png, int(img.width), int(img.height), channels, pixels,
+                                int(img.width) * channels))
       throw std::runtime_error("cannot encode the " + name + " texture as PNG");
     tinygltf::Image image;
     image.name = name;
     image.mimeType = "image/png";
     image.bufferView = add_view(png.data(), png.size(), 0);
     model.images.push_back(image);
-    tinygltf::Sampler sampler;
-    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    model.samplers.push_back(sampler);
     tinygltf::Texture texture;
     texture.name = name;
-    texture.sampler = int(model.samplers.size() - 1);
+    texture.sampler = sampler(wrap);
     texture.source = int(model.images.size() - 1);
     model.textures.push_back(texture);
     return int(model.textures.size() - 1);
   }
 
-  int add_mesh(const std::string& name, const Mesh& mesh, int material) {
+  // The bark material: textured when the model has bark textures (see the top).
+  int add_bark_material(const TreeModel& tree) {
+    if (tree.bark_texture.rgba.empty()) return add_material("bark", tree.bark_color, false);
+    int m = add_material("bark", glm::vec3(1.0f), false);
+    int albedo = add_texture("bark", tree.bark_texture, TINYGLTF_TEXTURE_WRAP_REPEAT, 3);
+    tinygltf::Material& mat = model.materials[size_t(m)];
+    mat.pbrMetallicRoughness.baseColorTexture.index = albedo;
+    if (!tree.bark_normal.rgba.empty())
+      mat.normalTexture.index = add_texture("bark_normal", tree.bark_normal, TINYGLTF_TEXTURE_WRAP_REPEAT, 3);
+    const glm::vec3 c = tree.bark_color;
+    mat.extras = to_value(nlohmann::json{
+        {"forest_bark", {{"color", {c.r, c.g, c.b}}, {"tile_meters", tree.bark_tile_meters}}}});
+    return m;
+  }
+
+  // with_tangents: also TANGENT (mesh_tangents), for a normal-mapped material.
+  int add_mesh(const std::string& name, const Mesh& mesh, int material, bool with_tangents = false) {
     std::vector<float> pos, nrm, uv;
     for (const Vertex& v : mesh.vertices) {
       pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
@@ -174,6 +210,11 @@ struct Writer {
     prim.attributes["POSITION"] = add_floats(pos, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
     prim.attributes["NORMAL"] = add_floats(nrm, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
     prim.attributes["TEXCOORD_0"] = add_floats(uv, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    if (with_tangents) {
+      std::vector<float> tan;
+      for (const glm::vec4& t : mesh_tangents(mesh)) tan.insert(tan.end(), {t.x, t.y, t.z, t.w});
+      prim.attributes["TANGENT"] = add_floats(tan, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    }
     prim.indices = add_indices(mesh.indices);
     prim.material = material;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
@@ -200,9 +241,10 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   tinygltf::Node branches;
   branches.name = "branches";
   int bark = -1;
+  const bool bark_tangents = !tree.bark_texture.rgba.empty() && !tree.bark_normal.rgba.empty();
   if (drawable(tree.branches)) {
-    bark = w.add_material("bark", tree.bark_color, false);
-    branches.mesh = w.add_mesh("branches", tree.branches, bark);
+    bark = w.add_bark_material(tree);
+    branches.mesh = w.add_mesh("branches", tree.branches, bark, bark_tangents);
   }
   m.nodes.push_back(root);
   m.nodes.push_back(branches);
@@ -225,7 +267,7 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
     attrs["TRANSLATION"] = tinygltf::Value(w.add_floats(t, 3, 0, false));
     attrs["ROTATION"] = tinygltf::Value(w.add_floats(r, 4, 0, false));
     attrs["SCALE"] = tinygltf::Value(w.add_floats(s, 3, 0, false));
-    attrs["_COLOR"] = tinygltf::Value(w.add_floats(c, 3, 0, false));
+    attrs["_COLOR_0"] = tinygltf::Value(w.add_floats(c, 3, 0, false));  // three.js: instance colour
     tinygltf::Value::Object ext;
     ext["attributes"] = tinygltf::Value(std::move(attrs));
     leaves.extensions[kInstancing] = tinygltf::Value(std::move(ext));
@@ -237,11 +279,11 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   for (size_t i = 0; i < tree.branch_lods.size(); ++i) {
     const MeshLod& lod = tree.branch_lods[i];
     if (!drawable(lod.mesh)) continue;
-    if (bark < 0) bark = w.add_material("bark", tree.bark_color, false);
+    if (bark < 0) bark = w.add_bark_material(tree);
     std::string name = "branches_lod" + std::to_string(i + 1);
     tinygltf::Node node;
     node.name = name;
-    node.mesh = w.add_mesh(name, lod.mesh, bark);
+    node.mesh = w.add_mesh(name, lod.mesh, bark, bark_tangents);
     m.meshes[size_t(node.mesh)].extras = to_value(
         nlohmann::json{{"forest_lod", {{"level", i + 1}, {"error", lod.error}}}});
     m.nodes.push_back(node);

@@ -3,6 +3,7 @@
 // generators/mesh.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -11,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "generators/mesh/bspline.h"
+#include "generators/mesh/junction.h"
 #include "generators/mesh/mesher.h"
 
 namespace forest::mesher_detail {
@@ -30,15 +32,15 @@ struct Chain {
 std::vector<Chain> decompose_chains(const TreeGraph& graph,
                                     const std::vector<std::vector<uint32_t>>& children);
 
-// A chain's axis: its spline, the bark's v along it, and the graph node of every control
-// point.
+// A chain's axis: its spline, the arc length along it (bark v before the tile scale), and
+// the graph node of every control point.
 struct ChainGeom {
   std::vector<uint32_t> node;  // graph node of each control point (consecutive duplicates merged)
   BSpline spline;
   bool from_parent = false;
   uint32_t sides = 3;
   int substeps = 8;
-  std::vector<double> dense_v;  // bark v at s = j / substeps
+  std::vector<double> dense_v;  // arc length (m) at s = j / substeps, from the tree's base
   double last() const { return spline.max_parameter(); }
   glm::vec3 control_pos(size_t i) const { return glm::vec3(spline.control(long(i))); }
   float control_radius(size_t i) const { return spline.control(long(i)).w; }
@@ -107,6 +109,10 @@ class BranchMesher {
   // centering the junction) on the axis keeps the branch attached to its parent's tube.
   glm::vec3 anchor(uint32_t node) const;
 
+  // Bark uv of vertex k of a ring (mesher.h): u along the ring's polygon from its middle
+  // vertex, v = −arc / tile. Radius 0 gives the ring's middle, (0, v).
+  glm::vec2 ring_uv(uint32_t k, uint32_t sides, float radius, double arc) const;
+
   // Unjoins a fork: its side branches start closed inside the parent instead.
   void drop_all(Fork& f);
 
@@ -138,6 +144,11 @@ class BranchMesher {
   // Joins the cut rings of every planned fork; a fork whose rings cannot be joined goes to
   // `failed` (and is retried unjoined).
   void emit_junctions(Mesh& mesh, BranchMeshInfo& info, std::vector<uint32_t>& failed);
+
+  // The joined fork's triangles, on the ring vertices where they keep their tube's uv and
+  // on copies with uv of their own elsewhere (junction_uvs, junction_uv.h).
+  void emit_junction_surface(const Fork& f, const std::vector<std::array<RingVertex, 3>>& tris, Mesh& mesh,
+                             const BranchMeshInfo& info);
 
   const TreeGraph& graph_;
   const MesherParams& p_;

@@ -14,12 +14,16 @@ void optimize_mesh(Mesh& mesh);
 
 // Simplified versions of `lod0` (itself unchanged), each aiming at a fraction of its
 // triangles (e.g. 0.5, 0.25, 0.12) by edge collapses (meshopt_simplify) on the surface
-// welded by position, so a closed LOD0 gives closed levels. Open borders (the trunk's base
-// ring) are locked so the tree keeps its footing. Each level's error is
-// meshopt's relative error times meshopt_simplifyScale, i.e. meters, taken as the running
-// maximum so that errors never decrease along the chain. A level that does not remove at
-// least 10% of the previous level's triangles ends the chain. Every level is optimized
-// (optimize_mesh) and holds only the vertices it uses.
+// welded by position (one vertex per position, so texture seams and junction copies lock
+// nothing), so a closed LOD0 gives closed levels. Open borders (the trunk's base ring) are
+// locked so the tree keeps its footing. Each corner of a simplified triangle then takes the
+// LOD0 vertex at its position whose uv agree best with the other corners', so the texture
+// seams stay where LOD0 has them; a triangle left across a seam (its seam vertex collapsed
+// away) gets a new vertex that continues one side's uv. Each level's error is meshopt's
+// relative error times meshopt_simplifyScale, i.e. meters, taken as the running maximum so
+// that errors never decrease along the chain. A level that does not remove at least 10% of
+// the previous level's triangles ends the chain. Every level is optimized (optimize_mesh)
+// and holds only the vertices it uses.
 std::vector<MeshLod> simplify_lods(const Mesh& lod0, std::span<const float> fractions,
                                    float max_relative_error = 0.25f);
 

@@ -97,13 +97,13 @@ void BranchMesher::build_chains() {
     }
     g.sides = uint32_t(ring_sides(ctrl[0].w, r_max, p_));
     g.spline = BSpline(std::move(ctrl));
-    // Bark v = ∫ ds / (2π r), tabulated densely along the axis.
+    // Arc length along the axis, tabulated densely.
     size_t n = size_t(g.last() * g.substeps) + 1;
     double v = 0.0;
     glm::vec4 prev = g.spline.point(0.0);
     for (size_t j = 0; j < n; ++j) {
       glm::vec4 q = g.spline.point(double(j) / g.substeps);
-      if (j > 0) v += glm::length(glm::vec3(q) - glm::vec3(prev)) / (kPi * double(q.w + prev.w));
+      if (j > 0) v += glm::length(glm::vec3(q) - glm::vec3(prev));
       g.dense_v.push_back(v);
       prev = q;
     }
@@ -117,7 +117,8 @@ void BranchMesher::build_chains() {
     }
     chains_.push_back(std::move(g));
   }
-  // Bark v continues from the parent at the fork, so junctions are not stretched across it.
+  // Arc length (so bark v) continues from the parent at the fork, so junctions are not
+  // stretched across it.
   // Chains come parents first, so each parent's offset is final when its children read it.
   for (ChainGeom& g : chains_) {
     if (!g.from_parent || g.dense_v.empty()) continue;
@@ -129,6 +130,12 @@ void BranchMesher::build_chains() {
   for (Fork& f : forks_) f.through = through_[f.node].first;
   is_fork_.assign(graph_.nodes.size(), 0);
   for (const Fork& f : forks_) is_fork_[f.node] = 1;
+}
+
+glm::vec2 BranchMesher::ring_uv(uint32_t k, uint32_t sides, float radius, double arc) const {
+  const double perimeter = double(sides) * 2.0 * double(radius) * std::sin(kPi / double(sides));
+  const double tile = double(p_.bark_tile_meters);
+  return glm::vec2(float((double(k) / double(sides) - 0.5) * perimeter / tile), float(-arc / tile));
 }
 
 glm::vec3 BranchMesher::anchor(uint32_t node) const {
@@ -148,7 +155,14 @@ void BranchMesher::emit_piece(const Piece& pc, Mesh& mesh, BranchMeshInfo& info)
   if (end) samples.back() = SplineSample{pc.s1, end->center, end->ring_radius, -end->axis};
   std::vector<glm::vec3> tangents;
   for (const SplineSample& s : samples) tangents.push_back(s.tangent);
-  std::vector<Frame> frames = parallel_transport(tangents, any_perpendicular(tangents[0]));
+  // A continuation starts with the incoming ring's frame carried across the fork, so that
+  // the two tubes' u (and the junction's, which continues both) agree around the branch.
+  glm::vec3 normal0 = any_perpendicular(tangents[0]);
+  if (start && start->kind == EntryKind::continuation)
+    for (const Entry& e : forks_[pc.start_fork].entries)
+      if (e.kind == EntryKind::incoming && e.ring != kNone)
+        normal0 = transport(info.rings[e.ring].normal, info.rings[e.ring].tangent, tangents[0]);
+  std::vector<Frame> frames = parallel_transport(tangents, normal0);
 
   const uint32_t sides = g.sides;
   const uint32_t piece = uint32_t(info.pieces++);
@@ -160,13 +174,11 @@ void BranchMesher::emit_piece(const Piece& pc, Mesh& mesh, BranchMeshInfo& info)
     const SplineSample& s = samples[i];
     const Frame& fr = frames[i];
     float r = std::max(s.radius, p_.min_radius);
-    float v = float(g.v_at(s.s));
     first[i] = uint32_t(mesh.vertices.size());
     for (uint32_t k = 0; k <= sides; ++k) {
       double theta = 2.0 * kPi * double(k % sides) / double(sides);
       glm::vec3 dir = float(std::cos(theta)) * fr.normal + float(std::sin(theta)) * fr.binormal;
-      mesh.vertices.push_back(Vertex{s.position + r * dir, glm::normalize(dir),
-                                     glm::vec2(float(k) / float(sides), v)});
+      mesh.vertices.push_back(Vertex{s.position + r * dir, glm::normalize(dir), ring_uv(k, sides, r, g.v_at(s.s))});
     }
     info.rings.push_back(TubeRing{g.node_near(s.s), pc.chain, piece, s.s, s.position, fr.tangent,
                                   fr.normal, r, sides, first[i]});
@@ -191,18 +203,26 @@ void BranchMesher::emit_piece(const Piece& pc, Mesh& mesh, BranchMeshInfo& info)
     // is closed (no hole) although the two surfaces interpenetrate. Used only where a fork
     // cannot be joined (branches almost parallel to another one, or too short to leave
     // the bifurcation sphere) or when joining is switched off.
+    // The cap has its own copies of the ring's vertices: its uv are the disc's, to scale.
     const SplineSample& s = samples.front();
+    const glm::vec2 centre = ring_uv(sides / 2, sides, 0.0f, g.v_at(s.s));
+    const float r = std::max(s.radius, p_.min_radius);
     uint32_t c = uint32_t(mesh.vertices.size());
     info.start_cap_vertices.push_back(c);
-    mesh.vertices.push_back(Vertex{s.position, -frames.front().tangent,
-                                   glm::vec2(0.5f, float(g.v_at(s.s)))});
+    mesh.vertices.push_back(Vertex{s.position, -frames.front().tangent, centre});
+    for (uint32_t k = 0; k < sides; ++k) {
+      double theta = 2.0 * kPi * double(k) / double(sides);
+      glm::vec2 disc(float(std::cos(theta)), float(std::sin(theta)));
+      mesh.vertices.push_back(Vertex{mesh.vertices[first[0] + k].position, -frames.front().tangent,
+                                     centre + disc * (r / p_.bark_tile_meters)});
+    }
     for (uint32_t k = 0; k < sides; ++k)
-      mesh.indices.insert(mesh.indices.end(), {c, first[0] + k + 1, first[0] + k});
+      mesh.indices.insert(mesh.indices.end(), {c, c + 1 + (k + 1) % sides, c + 1 + k});
   }
   if (pc.end == EndKind::tip) {
     const SplineSample& s = samples.back();
     uint32_t apex = uint32_t(mesh.vertices.size());
-    mesh.vertices.push_back(Vertex{s.position, frames.back().tangent, glm::vec2(0.5f, float(g.v_at(s.s)))});
+    mesh.vertices.push_back(Vertex{s.position, frames.back().tangent, ring_uv(sides / 2, sides, 0.0f, g.v_at(s.s))});
     info.cap_vertices.push_back(apex);
     uint32_t last = first[rings - 1];
     for (uint32_t k = 0; k < sides; ++k)

@@ -37,10 +37,13 @@ struct MesherParams {
   float end_share = 0.7f;
   // Angular gap (degrees) kept between the cross-sections of two branches seen from the fork.
   float junction_margin_deg = 3.0f;
+  // Bark uv are metres divided by this (bark_tile_meters of the species' bark pattern), so
+  // one texture tile covers this many metres in u and v on every branch.
+  float bark_tile_meters = 1.0f;
 };
 
 // One ring of the tube mesh: vertices [first_vertex, first_vertex + sides] (the last one
-// repeats the first position with u = 1, the texture seam). Exposed for tests and tools.
+// repeats the first position at the far side of the texture seam). Exposed for tests and tools.
 struct TubeRing {
   uint32_t node = 0;          // graph node nearest the ring along its chain
   uint32_t chain = 0;         // chain index
@@ -75,8 +78,14 @@ int ring_sides(float r, float r_max, const MesherParams& params);
 // a cone closes each tip. At a fork all branches (the incoming one, its continuation and the
 // side branches) are cut where they leave the largest pairwise bifurcation sphere, and the cut
 // rings are joined by the convex hull of their projections onto a sphere around the fork
-// (see mesher_forks.cpp). u runs around the branch, v along it in units of the local circumference
-// (v = ∫ ds / 2πr, so the bark texture keeps its aspect as the branch thins).
+// (see mesher_forks.cpp). Bark uv are physical, in tiles of params.bark_tile_meters, so the
+// texture has the same texel density on every branch: u runs around the ring's polygon,
+// u = (k / sides − 1/2) · perimeter / tile for vertex k (the seam, vertex 0 and its copy k =
+// sides, at u = ∓perimeter / 2tile: a texture discontinuity where the perimeter is not a
+// whole number of tiles); v = −(arc length along the axis) / tile, continued from the parent
+// at forks. v decreases toward the tip so that, seen from outside, the texture stands upright
+// with +u to the right: the tangent frame (+u, −v, outward normal) is right-handed. Junction
+// surfaces and caps get vertices of their own whose uv unfold them at the same scale.
 Mesh mesh_branches(const TreeGraph& graph, const MesherParams& params = {},
                    BranchMeshInfo* info = nullptr);
 

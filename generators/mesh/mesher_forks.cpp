@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "generators/mesh/branch_mesher.h"
 #include "generators/mesh/junction.h"
+#include "generators/mesh/junction_uv.h"
 #include "generators/tree/allometry.h"
 
 namespace forest::mesher_detail {
@@ -169,21 +172,43 @@ void BranchMesher::emit_junctions(Mesh& mesh, BranchMeshInfo& info, std::vector<
       failed.push_back(fi);
       continue;
     }
-    for (const auto& t : tris) {
-      for (int k = 0; k < 3; ++k) {
-        const TubeRing& r = info.rings[f.entries[t[k].ring].ring];
-        uint32_t index = r.first_vertex + t[k].index;
-        // At the texture seam take the u = 1 copy when the triangle's other corners on this
-        // ring lie on the far side of the seam.
-        if (t[k].index == 0)
-          for (int o = 0; o < 3; ++o)
-            if (o != k && t[o].ring == t[k].ring && 2 * t[o].index > r.sides) index = r.first_vertex + r.sides;
-        mesh.indices.push_back(index);
-      }
-    }
+    emit_junction_surface(f, tris, mesh, info);
     info.junction_triangles += tris.size();
     ++info.junctions;
   }
+}
+
+void BranchMesher::emit_junction_surface(const Fork& f, const std::vector<std::array<RingVertex, 3>>& tris,
+                                         Mesh& mesh, const BranchMeshInfo& info) {
+  // Junction corners are the ring vertices where they keep the tube's uv, else copies with
+  // uv of their own (junction_uv.h); copies with the same uv are shared.
+  std::vector<std::array<JunctionUvCorner, 3>> corners(tris.size());
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Entry& e = f.entries[tris[t][k].ring];
+      const TubeRing& r = info.rings[e.ring];
+      JunctionUvCorner& c = corners[t][k];
+      c.vertex = r.first_vertex + tris[t][k].index;
+      c.position = mesh.vertices[c.vertex].position;
+      c.on_tube = e.kind != EntryKind::side;
+      c.tube_uv = mesh.vertices[c.vertex].uv;
+      c.period = float(double(r.sides) * 2.0 * double(r.radius) * std::sin(kPi / double(r.sides)) /
+                       double(p_.bark_tile_meters));
+    }
+  std::vector<std::array<glm::vec2, 3>> uvs = junction_uvs(corners, p_.bark_tile_meters);
+  std::map<std::tuple<uint32_t, float, float>, uint32_t> copies;
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t source = corners[t][k].vertex;
+      const glm::vec2 uv = uvs[t][k];
+      if (uv == mesh.vertices[source].uv) {  // the tube's own vertex, uv and all
+        mesh.indices.push_back(source);
+        continue;
+      }
+      auto [it, added] = copies.try_emplace({source, uv.x, uv.y}, uint32_t(mesh.vertices.size()));
+      if (added) mesh.vertices.push_back(Vertex{mesh.vertices[source].position, mesh.vertices[source].normal, uv});
+      mesh.indices.push_back(it->second);
+    }
 }
 
 }  // namespace forest::mesher_detail

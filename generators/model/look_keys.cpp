@@ -13,6 +13,8 @@ LookKeys read_look_keys(const TomlTable& t) {
   std::vector<std::string> shapes;
   for (LeafShape s : kLeafShapes) shapes.push_back(leaf_shape_name(s));
   k.leaf_shape = *parse_leaf_shape(t.choice("leaf_shape", leaf_shape_name(d.leaf_shape), shapes));
+  k.bark_pattern = *parse_bark_pattern(t.choice("bark_pattern", bark_pattern_name(d.bark_pattern),
+                                                {"furrowed", "smooth", "birch", "scaly", "plated", "generic"}));
   k.bark_color = t.vec3("bark_color", d.bark_color, 0.0, 1.0);
   k.leaf_color = t.vec3("leaf_color", d.leaf_color, 0.0, 1.0);
   // 3 sides is the least that encloses a tube; 32 is round at any distance the forest shows.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "generators/core/limits.h"
+#include "generators/mesh/bark_texture.h"
 #include "generators/mesh/mesh_lod.h"
 #include "generators/mesh/mesher.h"
 
@@ -28,6 +29,16 @@ nlohmann::json node_to_json(const toml::node& node) {
   node.visit([&](auto&& v) { text << v; });
   return text.str();
 }
+
+// The bark's textures, the size of their tile (the mesher's uv are in the same tiles) and
+// the pattern's name in the metadata.
+void add_bark(TreeModel& model, const LookKeys& look) {
+  BarkTextures bark = make_bark_textures(look.bark_pattern, look.bark_color);
+  model.bark_texture = std::move(bark.albedo);
+  model.bark_normal = std::move(bark.normal);
+  model.bark_tile_meters = bark_tile_meters(look.bark_pattern);
+  model.meta["bark_pattern"] = bark_pattern_name(look.bark_pattern);
+}
 }  // namespace
 
 nlohmann::json toml_to_json(const toml::table& table) {
@@ -45,6 +56,7 @@ TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ShootD
   MesherParams mesher;
   mesher.min_sides = look.ring_sides_min;
   mesher.max_sides = look.ring_sides_max;
+  mesher.bark_tile_meters = bark_tile_meters(look.bark_pattern);
   TreeModel model;
   model.branches = mesh_branches(graph, mesher);
   optimize_mesh(model.branches);
@@ -55,6 +67,7 @@ TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ShootD
   model.leaves = graph.leaves;
   model.bounding_sphere = bounding_sphere(model.branches, model.leaf_card, model.leaves);
   model.bark_color = look.bark_color;
+  add_bark(model, look);
   model.leaf_color = look.leaf_color;
 
   float height = 0.0f;

@@ -41,6 +41,11 @@ struct TreeModel {
   std::vector<MeshLod> branch_lods;     // LOD1, LOD2, ...: coarser, errors increasing
   Mesh leaf_card;                       // one leaf, local space: blade along +Y, normal +Z
   Image8 leaf_texture;                  // mapped on leaf_card by its uv; empty = untextured
+  // Bark (make_bark_textures): sRGB albedo (the whole base colour; empty = untextured, the
+  // bark is bark_color) and tangent-space normal map, repeated over the branch meshes' uv.
+  Image8 bark_texture;
+  Image8 bark_normal;
+  float bark_tile_meters = 0.0f;        // metres one texture tile covers (0: not recorded)
   std::vector<LeafPlacement> leaves;    // instances of leaf_card (in priority order once baked)
   Mesh hull;  // metaball hull (bake), empty before bake
   BakeData bake;  // hull samples, leaf order name, PR tables (bake); extras.forest at the asset boundary

@@ -122,3 +122,19 @@ TEST_F(LeafAppearance, NeedleCoverageAndColorKeptAtDistance) {
     EXPECT_GT(leaf[0].g, 1.5f * leaf[0].b);
   }
 }
+
+TEST_F(LeafAppearance, UndersidesArePalerAndLessSaturated) {
+  // The wall faces +z, away from the camera: it shows the cards' undersides. Turned about +y
+  // it shows their upper sides, with the same shading normal (toward the camera) and so the
+  // same light: the colours differ by the albedo alone.
+  Image8 solid = make_leaf_texture(LeafShape::needles);
+  for (size_t i = 3; i < solid.rgba.size(); i += 4) solid.rgba[i] = 255;
+  TreeModel under = leaf_wall(solid), upper = leaf_wall(solid);
+  for (LeafPlacement& l : upper.leaves) l.rotation = glm::quat(0.0f, 0.0f, 1.0f, 0.0f);
+  const glm::vec3 u = render(under, 128, 1).mean, t = render(upper, 128, 1).mean;
+  auto luma = [](glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; };
+  EXPECT_GT(luma(u), 1.1f * luma(t)) << "paler underside";
+  EXPECT_LT(luma(u), 1.35f * luma(t)) << "subtly";
+  EXPECT_LT(u.g / u.r, t.g / t.r) << "less saturated underside";
+  EXPECT_GT(u.g, u.r);  // still green
+}

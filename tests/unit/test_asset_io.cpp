@@ -12,6 +12,7 @@
 
 #include "generators/asset/asset_io.h"
 #include "generators/core/input_error.h"
+#include "generators/mesh/mesh_tangents.h"
 #include "generators/species/registry.h"
 
 using namespace forest;
@@ -204,7 +205,7 @@ TEST(AssetIo, LodsTextureAndLeafColorsRoundTrip) {
   for (size_t i = 0; i < m.leaves.size(); ++i) EXPECT_EQ(d.leaves[i].color, m.leaves[i].color);
 
   // The JSON: LOD meshes tagged in their extras, outside the scene; the leaf material is
-  // alpha-masked with the embedded texture; _COLOR is a float VEC3 instance attribute.
+  // alpha-masked with the embedded texture; _COLOR_0 is a float VEC3 instance attribute.
   uint32_t json_len;
   std::memcpy(&json_len, bytes.data() + 12, 4);
   nlohmann::json j = nlohmann::json::parse(bytes.begin() + 20, bytes.begin() + 20 + json_len);
@@ -226,7 +227,10 @@ TEST(AssetIo, LodsTextureAndLeafColorsRoundTrip) {
   int img = j["textures"][tex]["source"];
   EXPECT_EQ(j["images"][img]["mimeType"], "image/png");
   EXPECT_TRUE(j["images"][img].contains("bufferView"));
-  int color = j["nodes"][2]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["_COLOR"];
+  EXPECT_EQ(leaf["doubleSided"], true);
+  const auto& instancing = j["nodes"][2]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+  EXPECT_FALSE(instancing.contains("_COLOR"));  // written as three.js reads instance colours
+  int color = instancing["_COLOR_0"];
   EXPECT_EQ(j["accessors"][color]["type"], "VEC3");
   EXPECT_EQ(j["accessors"][color]["componentType"], 5126);
   // A model without texture or LODs writes neither.
@@ -318,4 +322,110 @@ TEST(AssetIo, FilesAtomicAndErrors) {
   std::ofstream(dir / "junk.glb") << "this is not a glb";
   EXPECT_THROW(load_glb(dir / "junk.glb"), InputError);
   fs::remove_all(dir);
+}
+
+namespace {
+
+// The asset's JSON chunk, and the bytes with `from` replaced by `to` padded with spaces to
+// the same length (JSON whitespace: the chunk keeps its size).
+nlohmann::json json_of(const std::vector<uint8_t>& bytes) {
+  uint32_t json_len;
+  std::memcpy(&json_len, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.begin() + 20, bytes.begin() + 20 + json_len);
+}
+
+std::vector<uint8_t> replace_in_json(std::vector<uint8_t> bytes, const std::string& from, std::string to) {
+  uint32_t json_len;
+  std::memcpy(&json_len, bytes.data() + 12, 4);
+  std::string text(bytes.begin() + 20, bytes.begin() + 20 + json_len);
+  size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at == std::string::npos || to.size() > from.size()) return bytes;
+  to.resize(from.size(), ' ');
+  std::copy(to.begin(), to.end(), bytes.begin() + 20 + long(at));
+  return bytes;
+}
+
+}  // namespace
+
+TEST(AssetIo, BarkTexturesRoundTrip) {
+  std::string text = kSmallSpecies;
+  text.insert(text.find("[[production]]"), "bark_pattern = \"furrowed\"\n");
+  TreeModel m = generate_from_species_text(text, "small.toml", {7});
+  ASSERT_EQ(m.bark_texture.width, 256u);
+  ASSERT_EQ(m.bark_normal.width, 256u);
+  const std::vector<uint8_t> bytes = encode_glb(m);
+  TreeModel d = decode_glb(bytes, "mem.glb");
+  // Lossless, with the look's colour and the tile size from the material's extras.
+  EXPECT_EQ(d.bark_texture.width, m.bark_texture.width);
+  EXPECT_EQ(d.bark_texture.rgba, m.bark_texture.rgba);
+  EXPECT_EQ(d.bark_normal.rgba, m.bark_normal.rgba);
+  EXPECT_EQ(d.bark_color, m.bark_color);
+  EXPECT_EQ(d.bark_tile_meters, m.bark_tile_meters);
+  EXPECT_EQ(d.bark_tile_meters, 0.5f);
+
+  // The JSON: a white factor (the texture is the colour), the normal map, repeating
+  // trilinear samplers, TANGENT on every bark mesh (unit xyz, w = ±1).
+  nlohmann::json j = json_of(bytes);
+  const auto& bark = j["materials"][0];
+  EXPECT_EQ(bark["name"], "bark");
+  EXPECT_EQ(bark["pbrMetallicRoughness"].value("baseColorFactor", nlohmann::json::array({1.0, 1.0, 1.0, 1.0})),
+            nlohmann::json::array({1.0, 1.0, 1.0, 1.0}));  // tinygltf leaves glTF's default implicit
+  for (const nlohmann::json* info : {&bark["pbrMetallicRoughness"]["baseColorTexture"], &bark["normalTexture"]}) {
+    const auto& sampler = j["samplers"][int(j["textures"][int((*info)["index"])]["sampler"])];
+    EXPECT_EQ(sampler["wrapS"], 10497);  // REPEAT
+    EXPECT_EQ(sampler["wrapT"], 10497);
+    EXPECT_EQ(sampler["minFilter"], 9987);  // LINEAR_MIPMAP_LINEAR
+    EXPECT_EQ(sampler["magFilter"], 9729);  // LINEAR
+  }
+  EXPECT_EQ(bark["extras"]["forest_bark"]["tile_meters"], 0.5);
+  size_t with_tangents = 0;
+  for (const auto& mesh : j["meshes"]) {
+    const auto& attrs = mesh["primitives"][0]["attributes"];
+    if (mesh["name"].get<std::string>().rfind("branches", 0) != 0) continue;
+    ASSERT_TRUE(attrs.contains("TANGENT")) << mesh["name"];
+    EXPECT_EQ(j["accessors"][int(attrs["TANGENT"])]["type"], "VEC4");
+    ++with_tangents;
+  }
+  EXPECT_EQ(with_tangents, 1 + m.branch_lods.size());
+  // Older assets: _COLOR as the instance colour's name, no bark textures.
+  TreeModel plain = m;
+  plain.bark_texture = plain.bark_normal = Image8{};
+  plain.bark_color = glm::vec3(0.3f, 0.2f, 0.1f);
+  std::vector<uint8_t> old = replace_in_json(encode_glb(plain), "\"_COLOR_0\"", "\"_COLOR\"");
+  EXPECT_FALSE(json_of(old)["materials"][0].contains("extras"));
+  TreeModel p = decode_glb(old, "old.glb");
+  EXPECT_TRUE(p.bark_texture.rgba.empty());
+  EXPECT_TRUE(p.bark_normal.rgba.empty());
+  EXPECT_EQ(p.bark_color, plain.bark_color);  // from the factor
+  ASSERT_EQ(p.leaves.size(), m.leaves.size());
+  for (size_t i = 0; i < m.leaves.size(); ++i) EXPECT_EQ(p.leaves[i].color, m.leaves[i].color);
+  // A malformed forest_bark is refused.
+  std::vector<uint8_t> bad = replace_in_json(bytes, "\"tile_meters\":0.5", "\"tile_meters\":-1");
+  EXPECT_THROW(decode_glb(bad, "bad.glb"), InputError);
+}
+
+TEST(AssetIo, BarkTangentsFollowUAndTheNormalMapsUp) {
+  TreeModel m = small_model();
+  std::vector<glm::vec4> tangents = mesh_tangents(m.branches);
+  ASSERT_EQ(tangents.size(), m.branches.vertices.size());
+  size_t checked = 0, agree = 0;
+  for (size_t t = 0; t + 2 < m.branches.indices.size(); t += 3) {
+    const Vertex &a = m.branches.vertices[m.branches.indices[t]], &b = m.branches.vertices[m.branches.indices[t + 1]];
+    const glm::vec4 ta = tangents[m.branches.indices[t]];
+    EXPECT_NEAR(glm::length(glm::vec3(ta)), 1.0f, 1e-4f);
+    EXPECT_NEAR(glm::dot(glm::vec3(ta), a.normal), 0.0f, 1e-4f);
+    EXPECT_TRUE(ta.w == 1.0f || ta.w == -1.0f);
+    // Along an edge, the tangent frame predicts the uv change: +u along xyz, and −v along
+    // the bitangent cross(n, t) · w (the +Y of a glTF normal map).
+    // (Vertex tangents are averages over their triangles: count the edges that agree.)
+    const glm::vec3 e = b.position - a.position;
+    const glm::vec2 du = b.uv - a.uv;
+    if (glm::length(e) < 1e-4f || glm::length(du) < 1e-4f) continue;
+    const glm::vec3 bitangent = glm::cross(glm::normalize(a.normal), glm::vec3(ta)) * ta.w;
+    if (std::abs(du.x) > 0.9f * glm::length(du)) ++checked, agree += glm::dot(e, glm::vec3(ta)) * du.x > 0.0f;
+    if (std::abs(du.y) > 0.9f * glm::length(du)) ++checked, agree += glm::dot(e, bitangent) * du.y < 0.0f;
+  }
+  EXPECT_GT(checked, 100u);
+  EXPECT_GE(double(agree), 0.99 * double(checked));
 }

@@ -103,7 +103,7 @@ const std::vector<StructDecl>& shared_structs() {
                       M(lod_index_count), M(lod_vertex_offset), M(lod_error), M(lod_count), M(leaf_texture_layer),
                       M(card_first_index), M(card_index_count), M(card_vertex_offset), M(leaf_offset),
                       M(leaf_count), M(table_offset), M(has_tables), M(sample_offset), M(sample_count),
-                      M(occlusion_margin), M(card_radius)),
+                      M(occlusion_margin), M(card_radius), M(bark_texture_layer)),
       GPU_STRUCT_DECL(HullSample, M(position), M(normal)),
       GPU_STRUCT_DECL(InstanceState, M(occlusion), M(visible), M(occluded), M(pad)),
       GPU_STRUCT_DECL(Leaf, M(position_scale), M(rotation), M(color)),

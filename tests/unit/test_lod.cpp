@@ -229,3 +229,29 @@ TEST(Lod, OptimizedForTheVertexCache) {
   EXPECT_GT(f_scattered, 1.5f * f_out);
   EXPECT_LT(f_out, 1.5f);
 }
+
+TEST(Lod, TextureSeamsStayWhereLod0HasThem) {
+  // Every LOD triangle's uv agree with its neighbours': no edge's uv are much longer than
+  // the edge at the bark's scale (uv in tiles of bark_tile_meters). A triangle smeared across
+  // the u seam, whose corners took u from both sides of it, spans the branch's whole
+  // circumference in u: its edges reach (sides − 1) times their length.
+  for (const char* name : {"broadleaf", "conifer", "quercus_robur"}) {
+    TreeModel m = generate_from_species(species(name));
+    ASSERT_GT(m.bark_tile_meters, 0.0f);
+    ASSERT_FALSE(m.branch_lods.empty()) << name;
+    for (size_t i = 0; i < m.branch_lods.size(); ++i) {
+      const Mesh& mesh = m.branch_lods[i].mesh;
+      float worst = 0.0f;
+      for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        for (int k = 0; k < 3; ++k) {
+          const Vertex& a = mesh.vertices[mesh.indices[t + size_t(k)]];
+          const Vertex& b = mesh.vertices[mesh.indices[t + size_t(k + 1) % 3]];
+          worst = std::max(worst, glm::length(b.uv - a.uv) * m.bark_tile_meters /
+                                      (glm::length(b.position - a.position) + 1e-6f));
+        }
+      std::printf("%s LOD%zu: %zu triangles, longest uv edge %.2f times its length\n", name, i + 1,
+                  mesh.indices.size() / 3, worst);
+      EXPECT_LT(worst, 3.0f) << name << " LOD" << i + 1;
+    }
+  }
+}

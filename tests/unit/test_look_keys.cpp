@@ -102,6 +102,18 @@ const std::map<std::string, LookChange>& look_changes() {
         [](const TreeModel& base, const TreeModel& changed, const std::string& what) {
           EXPECT_EQ(changed.bark_color, glm::vec3(0.5f, 0.4f, 0.3f)) << what;
           EXPECT_NE(changed.bark_color, base.bark_color) << what;
+          EXPECT_NE(changed.bark_texture.rgba, base.bark_texture.rgba) << what;  // the albedo holds it
+        }}},
+      // Another texture and normal map, and bark uv in its tile size.
+      {"bark_pattern",
+       {"\"birch\"",
+        [](const TreeModel& base, const TreeModel& changed, const std::string& what) {
+          EXPECT_EQ(changed.meta["bark_pattern"], "birch") << what;
+          EXPECT_EQ(base.meta["bark_pattern"], "generic") << what;
+          EXPECT_NE(changed.bark_texture.rgba, base.bark_texture.rgba) << what;
+          EXPECT_NE(changed.bark_normal.rgba, base.bark_normal.rgba) << what;
+          EXPECT_EQ(changed.bark_tile_meters, bark_tile_meters(BarkPattern::birch)) << what;
+          EXPECT_EQ(base.bark_tile_meters, bark_tile_meters(BarkPattern::generic)) << what;
         }}},
       {"leaf_color",
        {"[0.3, 0.6, 0.2]",
@@ -145,6 +157,8 @@ TEST(LookKeys, OneSetOfDefaults) {
   TomlDocument doc = TomlDocument::parse("method = \"lsystem\"\n", "d.toml");
   LookKeys read = read_look_keys(doc.root()), defaults;
   EXPECT_EQ(read.leaf_shape, defaults.leaf_shape);
+  EXPECT_EQ(read.bark_pattern, defaults.bark_pattern);
+  EXPECT_EQ(defaults.bark_pattern, BarkPattern::generic);
   EXPECT_EQ(read.bark_color, defaults.bark_color);
   EXPECT_EQ(read.leaf_color, defaults.leaf_color);
   EXPECT_EQ(read.ring_sides_min, defaults.ring_sides_min);
@@ -171,7 +185,8 @@ TEST_P(LookKeysEveryMethod, BadValuesNameFileLineAndKey) {
   const std::string method = GetParam();
   const std::string base_text = small_preset(method);
   const std::pair<const char*, const char*> kBad[] = {
-      {"leaf_shape", "\"maple\""},  {"bark_color", "[0.5, 0.5]"},   {"leaf_color", "[0.1, 2.0, 0.1]"},
+      {"leaf_shape", "\"maple\""},  {"bark_pattern", "\"oak\""},   {"bark_pattern", "3"},
+      {"bark_color", "[0.5, 0.5]"},   {"leaf_color", "[0.1, 2.0, 0.1]"},
       {"ring_sides_min", "2"},      {"ring_sides_max", "33"},       {"ring_sides_max", "2.5"}};
   for (const auto& [key, value] : kBad) {
     std::string text = set_key(base_text, key, value);

@@ -71,7 +71,10 @@ TEST(Mesher, RingsAreCirclesOfTheirRadiusAroundTheAxis) {
       EXPECT_NEAR(glm::dot(d, r.tangent), 0.0f, 1e-3f * r.radius + 1e-6f);  // in the plane ⊥ T
       EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
       EXPECT_GT(glm::dot(v.normal, d), 0.99f * r.radius);  // radial, outward
-      EXPECT_NEAR(v.uv.x, float(j) / float(r.sides), 1e-6f);
+      // u along the ring's polygon (tile 1 m by default), from −perimeter/2 at vertex 0 to
+      // +perimeter/2 at its seam copy.
+      const float perimeter = float(r.sides) * 2.0f * r.radius * std::sin(3.14159265f / float(r.sides));
+      EXPECT_NEAR(v.uv.x, (float(j) / float(r.sides) - 0.5f) * perimeter, 1e-5f * perimeter);
     }
     // Vertex 0 lies along the frame's normal; the seam vertex repeats it exactly.
     EXPECT_NEAR(glm::length(m.vertices[r.first_vertex].position - (r.center + r.radius * r.normal)), 0.0f, 1e-5f);
@@ -100,8 +103,14 @@ TEST(Mesher, TrianglesAreValidAndWoundOutward) {
     for (uint32_t j = 0; j <= r.sides; ++j) piece_of[r.first_vertex + j] = int(r.piece);
     axis[r.piece].push_back(r.center);
   }
-  // A start cap's center, then the apex, follow their piece's last ring.
-  for (uint32_t c : info.start_cap_vertices) piece_of[c] = piece_of[c - 1];
+  // A start cap's center and its copies of the ring's vertices, then the apex, follow their
+  // piece's last ring.
+  for (uint32_t c : info.start_cap_vertices)
+    for (const TubeRing& r : info.rings)
+      if (int(r.piece) == piece_of[c - 1]) {
+        for (uint32_t j = 0; j <= r.sides; ++j) piece_of[c + j] = piece_of[c - 1];
+        break;
+      }
   for (uint32_t apex : info.cap_vertices) {
     int piece = piece_of[apex - 1];
     piece_of[apex] = piece;
@@ -206,28 +215,33 @@ TEST(Mesher, ParallelTransportedRingsDoNotTwist) {
   EXPECT_GT(checked, 10u);
 }
 
-TEST(Mesher, BarkTextureScalesWithTheRadius) {
-  // v counts circumferences: along a tube of constant radius r, v grows by length / (2πr).
+TEST(Mesher, BarkUvAreMetresOverTheTileSize) {
+  // Along a tube of constant radius r, v falls by arc length / tile (toward the tip) and u
+  // steps by one polygon side's length / tile: the same texel density whatever the radius.
   MesherParams p;
   p.max_bend_deg = 1.0f;
+  p.bark_tile_meters = 0.4f;
   BranchMeshInfo info;
   TreeGraph g = straight("FFFF+FFFF");  // pipe radii: constant along a single chain
   Mesh m = mesh_branches(g, p, &info);
-  const float r = g.nodes[1].radius;
   ASSERT_GE(info.rings.size(), 3u);
   for (size_t k = 1; k < info.rings.size(); ++k) {
-    float dv = m.vertices[info.rings[k].first_vertex].uv.y - m.vertices[info.rings[k - 1].first_vertex].uv.y;
-    float arc = glm::length(info.rings[k].center - info.rings[k - 1].center);
-    EXPECT_NEAR(dv, arc / (2.0f * 3.14159265f * r), 0.02f * dv + 1e-4f);
+    const TubeRing &a = info.rings[k - 1], &b = info.rings[k];
+    float dv = m.vertices[b.first_vertex].uv.y - m.vertices[a.first_vertex].uv.y;
+    float arc = glm::length(b.center - a.center);
+    EXPECT_NEAR(dv, -arc / p.bark_tile_meters, 0.02f * std::abs(dv) + 1e-4f);
+    const Vertex &v0 = m.vertices[b.first_vertex], &v1 = m.vertices[b.first_vertex + 1];
+    EXPECT_NEAR(v1.uv.x - v0.uv.x, glm::length(v1.position - v0.position) / p.bark_tile_meters, 1e-5f);
   }
-  // A thinner branch repeats the texture more often per meter.
+  // A thinner branch: the same v per metre, half the u around.
   TreeGraph thin = g;
   for (TreeNode& n : thin.nodes) n.radius *= 0.5f;
   BranchMeshInfo thin_info;
   Mesh tm = mesh_branches(thin, p, &thin_info);
-  float v_thick = m.vertices[info.rings.back().first_vertex].uv.y;
-  float v_thin = tm.vertices[thin_info.rings.back().first_vertex].uv.y;
-  EXPECT_NEAR(v_thin, 2.0f * v_thick, 1e-3f * v_thin);
+  ASSERT_EQ(thin_info.rings.size(), info.rings.size());
+  const TubeRing &thick_ring = info.rings.back(), &thin_ring = thin_info.rings.back();
+  EXPECT_NEAR(tm.vertices[thin_ring.first_vertex].uv.y, m.vertices[thick_ring.first_vertex].uv.y, 1e-4f);
+  EXPECT_NEAR(tm.vertices[thin_ring.first_vertex].uv.x, 0.5f * m.vertices[thick_ring.first_vertex].uv.x, 1e-5f);
 }
 
 TEST(Mesher, SidesFollowTheChainBaseRadius) {

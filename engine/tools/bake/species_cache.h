@@ -18,7 +18,7 @@ struct Context;
 namespace forest {
 
 // Bumped whenever a generator or the bake changes what a spec produces.
-constexpr int kSpeciesCacheVersion = 2;  // 2: coverage-preserving leaf mips (tables re-measured)
+constexpr int kSpeciesCacheVersion = 3;  // 3: bark textures, physical bark uv, seam-keeping LODs
 
 // $FOREST_CACHE, else $XDG_CACHE_HOME/forest, else $HOME/.cache/forest, else build-less
 // fallback ".forest-cache" in the current folder.
