@@ -74,7 +74,7 @@ using mat4 = glm::mat4;
 #define TABLE_FLOATS (S_SAMPLES + D_SAMPLES)
 
 #define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
-#define LEAF_TEXTURE_SIZE 128  // every model's leaf texture is one layer of a 2D array
+#define LEAF_TEXTURE_SIZE 256  // every model's leaf texture is one layer of a 2D array
 #define BARK_TEXTURE_SIZE 256  // every bark's albedo and normal map are one layer of two 2D arrays
 
 // FrameData.occlusion: depth-buffer occlusion feedback (Neubert 2012 §7.4).

@@ -124,7 +124,11 @@ TextureArrayData build_leaf_texture_array(const std::vector<const Image8*>& imag
   TextureArrayData data;
   data.size = size;
   data.layers = uint32_t(std::max<size_t>(images.size(), 1));
-  data.mips = uint32_t(std::bit_width(size));
+  // The chain stops at 8 x 8: below that a uniform alpha scale cannot keep the coverage of a
+  // card carrying a whole shoot (its 2 x 2 and 1 x 1 levels pass all or nothing), and
+  // distant crowns lost their foliage. A card smaller than 8 texels on screen samples the
+  // 8 x 8 level (a little aliasing, the right coverage).
+  data.mips = uint32_t(std::bit_width(size)) - std::min(3u, uint32_t(std::bit_width(size)) - 1u);
   for (uint32_t layer = 0; layer < data.layers; ++layer) {
     const Image8* src = layer < images.size() ? images[layer] : nullptr;
     Image8 level;

@@ -1,5 +1,5 @@
 // CPU preparation of the leaf texture array: every model's leaf texture resampled to one
-// square size with its full mip chain, layer-major: a box filter (color in linear light,
+// square size with its mip chain down to 8 x 8, layer-major: a box filter (color in linear light,
 // weighted by alpha) whose stored levels have alpha rescaled to keep the alpha-test coverage
 // of the full-resolution level (I. Castaño, "Computing alpha mipmaps", 2010).
 #pragma once

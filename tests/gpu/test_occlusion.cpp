@@ -162,7 +162,7 @@ TEST_F(OcclusionTest, TreeHiddenBehindARowIsPruned) {
   // row's distant leaves no longer grow into solid cards, and one of the hull samples of the
   // hidden tree (0.111) sees through a gap.
   EXPECT_LE(st[hidden].visible, 0.15f);
-  for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.95f) << "front-row tree " << i;
+  for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.85f) << "front-row tree " << i;  // a dense crown hides its own far-side samples
   EXPECT_GT(last.leaves_saved, uint32_t(m.leaves.size()) * 8 / 10);
   EXPECT_LT(last.leaves_drawn, first.leaves_drawn);
   EXPECT_EQ(last.leaves_drawn + last.leaves_saved, first.leaves_drawn);
@@ -286,6 +286,6 @@ TEST_F(OcclusionTest, MultisampledDepthFeedsThePyramid) {
   for (int f = 0; f < 5; ++f) r.render(s.desc.camera, nullptr, occl);
   std::vector<gpu::InstanceState> st = r.instance_states();
   EXPECT_LE(st.back().occlusion, 0.15f);
-  for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.95f) << "front-row tree " << i;
+  for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.85f) << "front-row tree " << i;  // a dense crown hides its own far-side samples
 }
 
