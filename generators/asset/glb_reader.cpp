@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 
@@ -267,8 +268,22 @@ bool no_write(std::string* err, const std::string&, const std::vector<unsigned c
   return false;
 }
 // Embedded images (buffer views) are decoded by stb_image to RGBA8, within a size limit.
+// `model` is the asset being loaded: tinygltf hands over a buffer view's bytes without
+// checking that the view lies inside its buffer, so that is checked here (a view reaching
+// past its buffer would make stb_image read past the allocation).
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                const unsigned char* bytes, int size, void*) {
+                const unsigned char* bytes, int size, void* model) {
+  bool inside = false;
+  for (const tinygltf::Buffer& b : static_cast<const tinygltf::Model*>(model)->buffers) {
+    auto begin = reinterpret_cast<uintptr_t>(b.data.data()), at = reinterpret_cast<uintptr_t>(bytes);
+    if (!b.data.empty() && at >= begin && at < begin + b.data.size() && size >= 0 &&
+        uintptr_t(size) <= begin + b.data.size() - at)
+      inside = true;
+  }
+  if (!inside) {
+    if (err) *err = "image " + std::to_string(index) + ": its buffer view reaches past its buffer";
+    return false;
+  }
   int w = 0, h = 0, comp = 0;
   if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &comp) || w <= 0 || h <= 0 ||
       w > kMaxGlbImageSide || h > kMaxGlbImageSide) {
@@ -323,8 +338,8 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
   tinygltf::TinyGLTF gltf;
   tinygltf::FsCallbacks fs{no_file_exists, no_expand, no_read, no_write, nullptr};
   gltf.SetFsCallbacks(fs);
-  gltf.SetImageLoader(load_image, nullptr);
   tinygltf::Model model;
+  gltf.SetImageLoader(load_image, &model);
   std::string err, warn;
   bool ok = false;
   try {
