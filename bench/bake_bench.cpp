@@ -1,6 +1,7 @@
 // Bake timing and the rendering-priority comparison of Neubert 2012 Table 7.4. Usage:
 //   bake_bench [--model SPECIES.toml] [--old-model SPECIES.toml] [--compare SPECIES.toml]...
 //              [--views N] [--resolution PX] [--out DIR] [--skip-time] [--skip-compare]
+//              [--orders random,density,...] [--tables]
 // 1. Bake time of --model (default bench/species/mig_a_50k.toml, ~51 K leaves) by stage:
 //    hull, priority (combined), PR references, PR pruned renders + counts (+ readback).
 // 2. The same PR measurement on --old-model (default scenes/species/broadleaf.toml) with the
@@ -10,7 +11,9 @@
 //    and every priority order, the detail λ needed to match the quality of Cook et al.
 //    (random order, s = 1/λ, at λ_Cook(d) = (1 − d)²) with that order's s_opt, along
 //    d = 0.1 … 0.7: geometry saved = 1 − λ/λ_Cook. "random" is the paper's "Opt PR" column.
-//    Writes DIR/table7_4.csv and DIR/table7_4.md (default DIR: bench/results).
+//    Writes DIR/table7_4.csv and DIR/table7_4.md (default DIR: bench/results). --orders: only
+//    these orders (Cook's reference is still the random order's); --tables: print each order's
+//    s_opt, q_opt and q_inverse per λ.
 // Times are wall clock and process CPU (all threads), single run: compare within one run.
 #include <chrono>
 #include <cstdio>
@@ -46,7 +49,9 @@ struct Options {
   std::vector<std::string> compare;
   uint32_t views = 6, resolution = 256;
   std::string out = kSource + "/bench/results";
-  bool time = true, table = true, variants = false;
+  bool time = true, table = true, variants = false, print_tables = false;
+  std::vector<Priority> orders{Priority::random, Priority::density, Priority::orientation, Priority::combined,
+                               Priority::layered};
 };
 
 Hull hull_of(TreeModel& m) {
@@ -151,7 +156,7 @@ void table_7_4(vk::Context& ctx, const Options& o, const std::string& device) {
       PriorityParams params;
     };
     std::vector<Variant> variants;
-    for (Priority p : {Priority::random, Priority::density, Priority::orientation, Priority::combined, Priority::layered})
+    for (Priority p : o.orders)
       variants.push_back({p, p == Priority::random ? "random + s_opt (Opt PR)" : std::string(priority_name(p)), {}});
     if (o.variants) {
       PriorityParams greedy;
@@ -170,6 +175,17 @@ void table_7_4(vk::Context& ctx, const Options& o, const std::string& device) {
       Timer t;
       PrMeasurement pm = measure_pr_tables(ctx, m, po);
       if (p == Priority::random) random = pm;
+      if (o.print_tables) {
+        std::printf("  lambda  s_opt  q_opt  q_inverse\n");
+        for (int i = 1; i < S_SAMPLES; ++i)
+          std::printf("  %.2f  %6.3f  %.4f  %.4f\n", double(pr_lambda(uint32_t(i))), double(pm.tables.s_opt[size_t(i)]),
+                      double(pm.tables.q_opt[size_t(i)]), double(pm.tables.q_inverse[size_t(i)]));
+      }
+      if (random.samples.empty()) {  // Cook's quality comes from the random order's renders
+        TreeModel rm = base;
+        reorder_leaves(rm, priority_order(rm, h, Priority::random, seed, {}));
+        random = measure_pr_tables(ctx, rm, po);
+      }
       OrderRow r;
       r.model = name + " (" + std::to_string(m.leaves.size()) + " leaves)";
       r.order = var.name;
@@ -251,6 +267,21 @@ int main(int argc, char** argv) {
     else if (a == "--skip-time") o.time = false;
     else if (a == "--skip-compare") o.table = false;
     else if (a == "--variants") o.variants = true;
+    else if (a == "--tables") o.print_tables = true;
+    else if (a == "--orders") {
+      o.orders.clear();
+      std::string list = value();
+      for (size_t at = 0; at <= list.size();) {
+        size_t end = std::min(list.find(',', at), list.size());
+        std::optional<Priority> p = parse_priority(list.substr(at, end - at));
+        if (!p) {
+          std::fprintf(stderr, "bake_bench: unknown order '%s'\n", list.substr(at, end - at).c_str());
+          return 2;
+        }
+        o.orders.push_back(*p);
+        at = end + 1;
+      }
+    }
     else {
       std::fprintf(stderr, "bake_bench: unknown argument %s\n", a.c_str());
       return 2;

@@ -7,6 +7,8 @@
 #include "engine/tools/measure/tree_measure.h"
 #include "generators/asset/asset_io.h"
 #include "generators/core/input_error.h"
+#include "generators/core/toml_reader.h"
+#include "generators/tree/habit_ranges.h"
 #include "generators/species/registry.h"
 
 namespace forest::app {
@@ -27,6 +29,7 @@ int run_measure(const MeasureArgs& args) {
   coverage.resolution = args.resolution;
   coverage.keep_masks = !args.masks.empty();
   TreeMeasurement m = measure_tree(context.ctx, model, args.species.empty() ? nullptr : &graph, coverage);
+  if (!args.species.empty()) m.ranges = read_habit_ranges(TomlDocument::load(args.species).root());
   if (validation_failed(context.ctx, "measurement")) return 1;
   for (const std::string& line : measurement_lines(m)) std::printf("%s\n", line.c_str());
   nlohmann::json json = measurement_json(m);

@@ -159,6 +159,15 @@ glm::vec3 TomlTable::vec3(std::string_view key, double lo, double hi) const {
   return v;
 }
 
+glm::dvec2 TomlTable::interval(std::string_view key, double lo, double hi) const {
+  const toml::node& n = require(key);
+  auto a = n.as_array();
+  if (!a || a->size() != 2) fail(key, "expected [low, high], an array of 2 numbers");
+  glm::dvec2 v(to_number(key, *a->get(0), lo, hi), to_number(key, *a->get(1), lo, hi));
+  if (v.x > v.y) fail(key, "low " + fmt_number(v.x) + " is above high " + fmt_number(v.y));
+  return v;
+}
+
 std::filesystem::path TomlTable::existing_file(std::string_view key) const {
   std::filesystem::path file = string(key);
   if (file.is_relative()) file = std::filesystem::path(file_).parent_path() / file;

@@ -41,6 +41,8 @@ class TomlTable {
   std::string choice(std::string_view key, std::string fallback, std::span<const std::string> options) const;
   glm::vec3 vec3(std::string_view key, glm::vec3 fallback, double lo, double hi) const;
   glm::vec3 vec3(std::string_view key, double lo, double hi) const;  // required
+  // A required closed interval [a, b]: two numbers with lo <= a <= b <= hi.
+  glm::dvec2 interval(std::string_view key, double lo, double hi) const;
   // A required file name, relative to this file's folder unless absolute; fails when there
   // is no such file (input files of a species: drawings, learned models).
   std::filesystem::path existing_file(std::string_view key) const;

@@ -2,6 +2,7 @@
 
 #include "generators/core/toml_reader.h"
 #include "generators/tree/foliage.h"
+#include "generators/tree/habit_ranges.h"
 #include "generators/methods/lsystem/lsystem_method.h"
 #include "generators/methods/particle_flow/particle_flow_method.h"
 #include "generators/methods/visual_hull/visual_hull_method.h"
@@ -46,13 +47,16 @@ TreeModel generate(const TomlDocument& doc, const std::string& species_name,
                        "`method` must be the first key of a species file");
   const MethodEntry* m = find_method(method);
   if (!m) root.fail("method", "unknown method '" + method + "' (known: " + known_methods() + ")");
-  root.check_key_groups({kCommonSpeciesKeys, m->keys, kLookKeys, kFoliageKeys});
+  root.check_key_groups({kCommonSpeciesKeys, m->keys, kLookKeys, kFoliageKeys, kHabitKeys});
   root.string("name", "");  // type check before the (possibly long) skeleton pass
   uint64_t seed = options.seed.value_or(uint64_t(root.integer("seed", 1, 0, int64_t(1) << 53)));
   // The look before the skeleton: a bad colour fails at once, not after a long simulation.
   LookKeys look = read_look_keys(root);
   const FoliageKeys foliage = read_foliage_keys(root, look.leaf_shape);
   look.leaf_color = season_leaf_color(foliage, look.leaf_color);
+  // The [habit] ranges are what the tree is measured against, not how it grows: checked
+  // here (a bad range fails before the skeleton pass); methods read only their own keys.
+  read_habit_ranges(root);
   Skeleton skeleton = m->skeleton(root, seed);
   // The shared foliage stage: every method's skeleton gets the same foliage model.
   if (skeleton.own_leaves)

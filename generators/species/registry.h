@@ -22,8 +22,9 @@ struct GenerateOptions {
   TreeGraph* skeleton = nullptr;  // when set, receives the skeleton the model was meshed from
 };
 
-// Keys of every species file besides the method's own, the look keys (kLookKeys) and the
-// foliage keys (kFoliageKeys).
+// Keys of every species file besides the method's own, the look keys (kLookKeys), the
+// foliage keys (kFoliageKeys) and the [habit] ranges (kHabitKeys, tree/habit_ranges.h; the
+// registry checks them and does not pass them to the method).
 inline constexpr std::string_view kCommonSpeciesKeys[] = {"method", "name", "seed"};
 
 // One modeling method. Each lives in generators/methods/<id>/, exports its entry from

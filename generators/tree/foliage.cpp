@@ -167,6 +167,13 @@ void place_foliage(TreeGraph& graph, const FoliageKeys& k, uint64_t seed) {
         add(node.position, axis, ref_of[i], start + 2.0 * kPi * double(m) / double(k.per_tip));
     }
   }
+  // Sprays of low, arching branches can bend down to the ground; none reaches below
+  // kFoliageGroundClearance above the root (the ground is there), neither base nor tip.
+  const float ground = graph.nodes[0].position.y + kFoliageGroundClearance;
+  std::erase_if(graph.leaves, [&](const LeafPlacement& l) {
+    glm::vec3 tip = l.position + l.rotation * glm::vec3(0.0f, l.scale, 0.0f);
+    return std::min(l.position.y, tip.y) < ground;
+  });
 }
 
 }  // namespace forest

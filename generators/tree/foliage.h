@@ -44,6 +44,9 @@ struct FoliageKeys {
   bool evergreen = false;         // autumn keeps the summer colour
 };
 
+// Meters above the root below which no foliage element reaches (ground contact).
+inline constexpr float kFoliageGroundClearance = 0.3f;
+
 // The keys read_foliage_keys reads; the registry accepts them for every method.
 inline constexpr std::string_view kFoliageKeys[] = {
     "foliage",        "leaf_size",   "leaf_size_jitter", "leaf_phyllotaxis", "leaves_per_shoot",

@@ -76,7 +76,7 @@ void print(const char* what, const PopWalk& w) {
 // transition band shrinks each leaf out over many frames, branch levels switch
 // at <= 1 px of projected error, so what flips is mostly 1-pixel slivers along
 // edges. The largest solid group (of fully flipped 2x2 squares) stays <= 0.08 %
-// of the frame (30 px at 240x160; lavapipe: cook 19, opt 4), and on average <=
+// of the frame (30 px at 240x160; lavapipe: cook 28, opt 0), and on average <=
 // 2 % of the tree pixels flip a frame. Without the band and at 8 px of error
 // (what a renderer with coarse discrete LODs does) branch levels jump in solid
 // pieces (54 px) and the bound fails.

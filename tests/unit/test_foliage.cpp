@@ -234,3 +234,18 @@ TEST(FoliageCard, ShootTextureIsTheLeafModelInThePhyllotaxis) {
   EXPECT_EQ(foliage_card_aspect(single), leaf_card_aspect(LeafShape::ovate));
   EXPECT_EQ(make_foliage_texture(single, 64).rgba, make_leaf_texture(LeafShape::ovate, 64).rgba);
 }
+
+TEST(Foliage, NothingReachesTheGround) {
+  // A 1 m stem bearing foliage along all of it: the elements of its lowest 0.3 m, and those
+  // whose tip would dip below that, are not placed; the rest are.
+  TreeGraph g = straight_branch(1);
+  FoliageKeys k = plain_keys();
+  k.spacing = 0.05f;
+  k.angle_deg = 120.0f;  // pointing down and out
+  place_foliage(g, k, 5);
+  ASSERT_GE(g.leaves.size(), 4u);
+  for (const LeafPlacement& l : g.leaves) {
+    EXPECT_GE(l.position.y, kFoliageGroundClearance - 1e-5f);
+    EXPECT_GE((l.position + axis_of(l) * l.scale).y, kFoliageGroundClearance - 1e-5f);
+  }
+}

@@ -1,11 +1,17 @@
-// Habit metrics (generators/tree/habit.h) on small hand-built graphs whose answers are known.
+// Habit metrics (generators/tree/habit.h) on small hand-built graphs whose answers are known,
+// and the presets' [habit] ranges (habit_ranges.h) against their generated trees.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "generators/core/rng.h"
+#include "generators/core/input_error.h"
+#include "generators/core/toml_reader.h"
+#include "generators/species/registry.h"
 #include "generators/tree/habit.h"
+#include "generators/tree/habit_ranges.h"
 
 using namespace forest;
 
@@ -213,4 +219,106 @@ TEST(Habit, HorizontalExtent) {
   std::vector<glm::vec3> p = {{1, 5, -2}, {-3, 0, 4}, {0, 9, 0}};
   EXPECT_EQ(horizontal_extent(p), glm::vec2(4.0f, 6.0f));
   EXPECT_EQ(horizontal_extent({}), glm::vec2(0.0f));
+}
+
+// ---- the presets' [habit] ranges (generators/tree/habit_ranges.h) ----
+
+namespace {
+
+std::optional<HabitRanges> ranges_of_text(const std::string& text) {
+  TomlDocument doc = TomlDocument::parse(text, "oak.toml");
+  return read_habit_ranges(doc.root());
+}
+
+// Expects reading the [habit] table of `text` to fail naming file, line and key.
+void expect_habit_error(const std::string& text, int line, const std::string& key) {
+  try {
+    ranges_of_text(text);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("oak.toml:" + std::to_string(line) + ":"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(key), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
+
+TEST(HabitRanges, ReadsTheTable) {
+  EXPECT_FALSE(ranges_of_text("method = \"lsystem\"\n").has_value());
+  std::optional<HabitRanges> r = ranges_of_text(
+      "method = \"lsystem\"\n[habit]\ncrown_width_over_height = [0.6, 1]\nclear_bole_over_height = [0.1, 0.3]\n"
+      "trunk_fraction_min = 0.25\nsingle_leader = true\n");
+  ASSERT_TRUE(r.has_value());
+  EXPECT_DOUBLE_EQ(r->crown_ratio->x, 0.6);
+  EXPECT_DOUBLE_EQ(r->crown_ratio->y, 1.0);
+  EXPECT_DOUBLE_EQ(r->clear_bole->y, 0.3);
+  EXPECT_DOUBLE_EQ(*r->trunk_fraction_min, 0.25);
+  EXPECT_TRUE(r->single_leader);
+}
+
+TEST(HabitRanges, BadInputNamesFileLineAndKey) {
+  const std::string head = "method = \"lsystem\"\n[habit]\n";
+  expect_habit_error(head + "crown_width_over_height = [1.0, 0.6]\n", 3, "crown_width_over_height");  // lo > hi
+  expect_habit_error(head + "crown_width_over_height = [0.6]\n", 3, "crown_width_over_height");
+  expect_habit_error(head + "crown_width_over_height = 0.6\n", 3, "crown_width_over_height");
+  expect_habit_error(head + "clear_bole_over_height = [0.1, 1.5]\n", 3, "clear_bole_over_height");
+  expect_habit_error(head + "clear_bole_over_height = [\"a\", 0.5]\n", 3, "clear_bole_over_height");
+  expect_habit_error(head + "trunk_fraction_min = -0.1\n", 3, "trunk_fraction_min");
+  expect_habit_error(head + "single_leader = 1\n", 3, "single_leader");
+  expect_habit_error(head + "crown_ratio = [0.1, 0.2]\n", 3, "crown_ratio");  // unknown key
+  expect_habit_error("method = \"lsystem\"\nhabit = 3\n", 2, "habit");
+  expect_habit_error("method = \"lsystem\"\n[habit]\n", 2, "habit");  // empty
+}
+
+TEST(HabitRanges, ChecksMetricsAgainstRanges) {
+  HabitRanges r;
+  r.crown_ratio = glm::dvec2(0.5, 1.0);
+  r.trunk_fraction_min = 0.25;
+  r.single_leader = true;
+  HabitMetrics m;
+  m.crown_ratio = 1.2f;
+  m.trunk_fraction = 0.3f;
+  m.single_leader = false;
+  std::vector<HabitCheck> c = check_habit(m, r);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].key, "crown_width_over_height");
+  EXPECT_FALSE(c[0].ok);
+  EXPECT_EQ(c[0].range_text(), "0.50-1.00");
+  EXPECT_TRUE(c[1].ok);
+  EXPECT_EQ(c[1].range_text(), ">= 0.25");
+  EXPECT_FALSE(c[2].ok);
+}
+
+// The registry takes the table (checked before the skeleton pass) and the method never sees
+// it: the same preset with and without [habit] gives the same tree.
+TEST(HabitRanges, RegistryAcceptsTheTableAndMethodsIgnoreIt) {
+  const std::string base = default_species_text("lsystem");
+  TreeModel a = generate_from_species_text(base, "fig2_1.toml");
+  TreeModel b = generate_from_species_text(base + "\n[habit]\ncrown_width_over_height = [0.3, 0.6]\n", "fig2_1.toml");
+  EXPECT_EQ(a.branches.indices.size(), b.branches.indices.size());
+  EXPECT_EQ(a.leaves.size(), b.leaves.size());
+  EXPECT_THROW(generate_from_species_text(base + "\n[habit]\ncrown_width_over_height = [0.6, 0.3]\n", "fig2_1.toml"),
+               InputError);
+}
+
+// Every preset with a [habit] table is generated and measured against it: a preset that
+// leaves its species' range fails here (README "Habit" table).
+TEST(HabitRanges, PresetsMeasureInsideTheirRanges) {
+  namespace fs = std::filesystem;
+  size_t checked = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(FOREST_SOURCE_DIR) / "scenes" / "species")) {
+    if (e.path().extension() != ".toml") continue;
+    std::optional<HabitRanges> r = read_habit_ranges(TomlDocument::load(e.path()).root());
+    if (!r) continue;
+    TreeGraph graph;
+    GenerateOptions options;
+    options.skeleton = &graph;
+    generate_from_species(e.path(), options);
+    HabitMetrics m = measure_habit(graph);
+    for (const HabitCheck& c : check_habit(m, *r))
+      EXPECT_TRUE(c.ok) << e.path().stem().string() << ": " << c.key << " " << c.value << " outside " << c.range_text();
+    ++checked;
+  }
+  EXPECT_GE(checked, 12u);  // the ten species and the two demo trees
 }

@@ -176,3 +176,30 @@ TEST(Magnetic, ErrorsNameTheKey) {
   expect_key("method = \"magnetic\"\nfield_tilt = 1.0\n", "field_tilt");
   expect_key("method = \"magnetic\"\nprofile = \"sawtooth\"\n", "profile");
 }
+
+TEST(Magnetic, TrunkClearDelaysTheTrunksFirstChild) {
+  // The trunk (curve 0) releases no child before arc length trunk_clear; the other curves
+  // keep child_spacing.
+  auto first_release_arc = [](const MagneticResult& r) {
+    double best = 1e30;
+    for (const MagneticCurve& c : r.curves) {
+      if (c.parent != 0) continue;
+      const auto& pts = r.curves[0].points;
+      double arc = 0.0;
+      for (uint32_t k = 1; k <= c.parent_point && k < pts.size(); ++k) arc += glm::length(pts[k] - pts[k - 1]);
+      best = std::min(best, arc);
+    }
+    return best;
+  };
+  SpaceFillParams P;
+  P.size = glm::dvec3(300, 400, 0);
+  P.max_curves = 40;
+  P.child_spacing = 40;
+  MagneticField f;
+  MagneticResult plain = grow_magnetic(P, f, 3);
+  P.trunk_clear = 150;
+  MagneticResult clear = grow_magnetic(P, f, 3);
+  EXPECT_LT(first_release_arc(plain), 100.0);
+  EXPECT_GE(first_release_arc(clear), 150.0 - 1e-6);
+  EXPECT_LT(first_release_arc(clear), 1e29);  // the trunk still has children
+}

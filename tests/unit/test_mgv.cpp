@@ -294,3 +294,25 @@ TEST(Mgv, ErrorsNameTheKey) {
   expect_key(t, "outer");
   expect_key("method = \"mgv\"\nnodes = 1000\n", "iteration");
 }
+
+TEST(Mgv, SourcesAboveKeepsTheBoleClear) {
+  // Forks of the tree below `height` (m above the root): none when every iteration after
+  // the trunk takes its sources from above 2.5 m; some without the key.
+  auto forks_below = [](const TreeGraph& t, float height) {
+    std::vector<int> children(t.nodes.size(), 0);
+    for (size_t i = 1; i < t.nodes.size(); ++i) ++children[size_t(t.nodes[i].parent)];
+    int n = 0;
+    for (size_t i = 0; i < t.nodes.size(); ++i)
+      if (children[i] > 1 && t.nodes[i].position.y - t.nodes[0].position.y < height) ++n;
+    return n;
+  };
+  MgvParams P = small_params(6.0f);
+  P.iterations[1].volume[0].center.y = 2.0f;  // a crown reaching down beside the trunk
+  MgvGraph g = build_mgv_graph(P, 2);
+  TreeGraph plain = grow_mgv(g, P, 2, nullptr);
+  P.iterations[1].sources_above = P.iterations[2].sources_above = 2.5f;
+  TreeGraph clear = grow_mgv(g, P, 2, nullptr);
+  EXPECT_GT(forks_below(plain, 2.4f), 0);
+  EXPECT_EQ(forks_below(clear, 2.4f), 0);
+  EXPECT_GT(clear.nodes.size(), 50u);
+}

@@ -165,3 +165,36 @@ TEST(Mig, ErrorsNameTheKey) {
   t.replace(t.find("shrink = 0.6"), 12, "shrink = inf");
   expect_key(t, "shrink");
 }
+
+TEST(Mig, TrunkHeightIsAStraightClearBole) {
+  // The trunk: the first nodes, straight up from the root (each the parent of the next).
+  auto trunk_of = [](const TreeGraph& t, glm::vec3 root) {
+    size_t m = 1;
+    while (m < t.nodes.size() && t.nodes[m].parent == int32_t(m - 1) && t.nodes[m].position.x == root.x &&
+           t.nodes[m].position.z == root.z)
+      ++m;
+    return m;
+  };
+  // Trunk nodes below its top that fork (have a child besides the next trunk node).
+  auto side_branches = [&](const TreeGraph& t, glm::vec3 root) {
+    size_t m = trunk_of(t, root);
+    std::vector<int> children(t.nodes.size(), 0);
+    for (size_t i = 1; i < t.nodes.size(); ++i) ++children[size_t(t.nodes[i].parent)];
+    int n = 0;
+    for (size_t i = 0; i + 1 < m; ++i) n += children[i] > 1;
+    return n;
+  };
+  MigParams P = small_params();
+  P.trunk_height = 2.0f;
+  TreeGraph top = grow_mig(P, 4, nullptr);
+  size_t m = trunk_of(top, P.root);
+  EXPECT_NEAR(top.nodes[m - 1].position.y - P.root.y, 2.0f, 1e-4f);
+  EXPECT_EQ(side_branches(top, P.root), 0);
+  // Excurrent: branches leave anywhere along it (a trunk into the crown, which starts low).
+  P.trunk_height = 5.2f;
+  TreeGraph high = grow_mig(P, 4, nullptr);
+  P.trunk_sources_all = true;
+  TreeGraph all = grow_mig(P, 4, nullptr);
+  EXPECT_EQ(side_branches(high, P.root), 0);
+  EXPECT_GT(side_branches(all, P.root), 0);
+}

@@ -70,7 +70,8 @@ TEST(Species, MethodIdsAndDefaultText) {
 // The species library (README): named after Neubert 2012's models and more, spanning methods
 // and habits. Forest-sized: LOD0 <= 10 K branch triangles; foliage of botanical size in
 // twig-cluster cards (one shoot of >= 4 leaves or needle shoots each, issue [2/6]): >= 4000
-// elements, and <= 30000 so that a forest of them stays a forest.
+// elements, and <= 40000: dense crowns need that many to overlap as real ones do (Opt PR's
+// savings come from the overlap, issue [2/6] item 7), and pruning keeps a forest of them fast.
 const char* const kLibrary[] = {"picea_abies",    "pinus_sylvestris", "larix_decidua",
                                 "betula_pendula", "fagus_sylvatica",  "salix_alba",
                                 "ulmus_laevis",   "populus_trichocarpa", "acer_campestre",
@@ -93,7 +94,7 @@ TEST(Species, EveryPresetGenerates) {
     ++library;
     library_methods.insert(m.meta["method"].get<std::string>());
     EXPECT_LE(m.branches.indices.size() / 3, 10000u) << stem;
-    EXPECT_LE(m.leaves.size(), 30000u) << stem;
+    EXPECT_LE(m.leaves.size(), 40000u) << stem;
     EXPECT_GE(m.leaves.size(), 4000u) << stem;
     EXPECT_EQ(m.meta["foliage"]["element"], "shoot") << stem;
     EXPECT_GE(m.meta["foliage"]["leaves_per_element"].get<int>(), 4) << stem;

@@ -33,6 +33,28 @@ nlohmann::json habit_json(const HabitMetrics& h) {
           {"single_leader", h.single_leader}};
 }
 
+// " (range 0.60-1.00: in range)" for the check of `key`, "" when the species sets none.
+std::string range_note(const std::vector<HabitCheck>& checks, const std::string& key) {
+  for (const HabitCheck& c : checks)
+    if (c.key == key) return " [range " + c.range_text() + ": " + (c.ok ? "in range" : "OUT OF RANGE") + "]";
+  return "";
+}
+
+nlohmann::json ranges_json(const std::vector<HabitCheck>& checks) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const HabitCheck& c : checks) {
+    nlohmann::json r = {{"value", rounded(c.value)}, {"in_range", c.ok}};
+    if (c.key == "single_leader")
+      r["required"] = true;
+    else if (c.key == "trunk_fraction_min")
+      r["min"] = rounded(c.lo);
+    else
+      r["range"] = {rounded(c.lo), rounded(c.hi)};
+    out[c.key] = r;
+  }
+  return out;
+}
+
 }  // namespace
 
 TreeMeasurement measure_tree(vk::Context& ctx, const TreeModel& model, const TreeGraph* graph,
@@ -50,14 +72,22 @@ std::vector<std::string> measurement_lines(const TreeMeasurement& m) {
   std::vector<std::string> out;
   out.push_back(format("leaves %u", m.leaves));
   if (const HabitMetrics* h = m.habit ? &*m.habit : nullptr) {
+    const std::vector<HabitCheck> checks = m.ranges ? check_habit(*h, *m.ranges) : std::vector<HabitCheck>{};
     out.push_back(format("height_m %.2f", h->height));
     out.push_back(format("crown_width_m %.2f (x %.2f, z %.2f)", h->crown_width, h->crown_width_x, h->crown_width_z));
-    out.push_back(format("crown_width_over_height %.3f", h->crown_ratio));
+    out.push_back(format("crown_width_over_height %.3f", h->crown_ratio) + range_note(checks, "crown_width_over_height"));
     out.push_back(format("clear_bole_over_height %.3f (crown base %.2f m; lowest leaf at %.3f H)", h->clear_bole,
-                         h->crown_base, h->lowest_leaf));
+                         h->crown_base, h->lowest_leaf) +
+                  range_note(checks, "clear_bole_over_height"));
     out.push_back(format("trunk_fraction %.3f (trunk %.2f m, %s)", h->trunk_fraction, h->trunk_height,
-                         h->codominant_fork ? "then a codominant fork" : "no codominant fork"));
-    out.push_back(format("single_leader %s", h->single_leader ? "yes" : "no"));
+                         h->codominant_fork ? "then a codominant fork" : "no codominant fork") +
+                  range_note(checks, "trunk_fraction_min"));
+    out.push_back(format("single_leader %s", h->single_leader ? "yes" : "no") + range_note(checks, "single_leader"));
+    if (!checks.empty()) {
+      size_t ok = 0;
+      for (const HabitCheck& c : checks) ok += c.ok;
+      out.push_back(format("habit_in_range %zu / %zu", ok, checks.size()));
+    }
   } else {
     out.push_back("habit n/a (needs the skeleton: measure a --species)");
   }
@@ -88,6 +118,7 @@ nlohmann::json measurement_json(const TreeMeasurement& m) {
   return {{"species", m.name},
           {"leaves", m.leaves},
           {"habit", m.habit ? habit_json(*m.habit) : nlohmann::json(nullptr)},
+          {"habit_ranges", m.habit && m.ranges ? ranges_json(check_habit(*m.habit, *m.ranges)) : nlohmann::json(nullptr)},
           {"coverage", {{"resolution", m.coverage.resolution}, {"views", views}, {"min", rounded(m.coverage.min)}}},
           {"depth",
            {{"solid", d.solid},

@@ -11,6 +11,7 @@
 #include "engine/tools/measure/leaf_coverage.h"
 #include "generators/tree/crown_depth.h"
 #include "generators/tree/habit.h"
+#include "generators/tree/habit_ranges.h"
 
 namespace forest {
 
@@ -18,6 +19,9 @@ struct TreeMeasurement {
   std::string name;  // the model's species name (extras.forest.species), else empty
   uint32_t leaves = 0;
   std::optional<HabitMetrics> habit;  // only with the skeleton (a .glb has none)
+  // The species' [habit] ranges (habit_ranges.h), when it has them: the text lines and the
+  // JSON put each habit metric next to its range and say whether it is inside.
+  std::optional<HabitRanges> ranges;
   LeafCoverage coverage;
   CrownDepth depth;  // of model.leaves, the leaves the coverage views draw
 };

@@ -164,7 +164,7 @@ MagneticResult grow_magnetic(const SpaceFillParams& P, const MagneticField& fiel
   // Breadth first: release children at even arc-length intervals along every curve.
   for (size_t ci = 0; ci < R.curves.size() && int(R.curves.size()) < P.max_curves; ++ci) {
     if (int(R.curves[ci].depth) >= P.max_depth) continue;
-    double arc = 0.0, next_release = P.child_spacing;
+    double arc = 0.0, next_release = ci == 0 && P.trunk_clear >= 0.0 ? P.trunk_clear : P.child_spacing;
     for (size_t k = 1; k + 1 < R.curves[ci].points.size() && int(R.curves.size()) < P.max_curves; ++k) {
       const auto& pts = R.curves[ci].points;
       arc += glm::length(pts[k] - pts[k - 1]);

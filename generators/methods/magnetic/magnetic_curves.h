@@ -78,6 +78,9 @@ struct SpaceFillParams {
   double trunk_q0 = 1.0;                 // q0 of the first particle (a straighter trunk when small)
   std::vector<SpiralPair> pairs{{650, 0.8}, {450, 0.75}, {250, 0.7}, {50, 0.65}};
   double child_spacing = 60.0;           // arc length between releases on a parent
+  // [ours] Arc length of the first curve (the trunk) before its first release: a clear bole
+  // (a broadleaf's trunk up to its first limbs). < 0: child_spacing, as on every curve.
+  double trunk_clear = -1.0;
   int max_curves = 300;
   int max_depth = 6;
 };

@@ -3,6 +3,8 @@
 //   profile ("spiral" | "power" | "triangle" | "square" | "constant"), q0, trunk_q0 (the
 //   first particle's q0), amplitude, mean,
 //   period, field (B0), field_noise (0..1), noise_scale, field_tilt (3d), child_spacing,
+//   trunk_clear ([ours]: arc length up the trunk before its first child, default
+//   child_spacing),
 //   max_curves, max_depth, scale (m per unit), [[spiral]] tables { T, alpha } from the
 //   largest to the smallest (default: the thesis' (650, 0.8) (450, 0.75) (250, 0.7)
 //   (50, 0.65)); plus the skeleton style keys of graph_skeleton.h.
@@ -41,6 +43,7 @@ MagneticSpecies read_magnetic_species(const TomlTable& t) {
   s.field.tilt = t.number("field_tilt", 0.3, -100.0, 100.0);
   if (!s.field.three_d && t.has("field_tilt")) t.fail("field_tilt", "applies to mode = \"3d\" only");
   P.child_spacing = t.number("child_spacing", 60.0, 0.1, 1e9);
+  P.trunk_clear = t.number("trunk_clear", P.child_spacing, 0.1, 1e9);
   P.max_curves = int(t.integer("max_curves", 300, 1, 20000));
   P.max_depth = int(t.integer("max_depth", 6, 0, 64));
   s.scale = t.number("scale", 0.015, 1e-6, 1000.0);
@@ -112,7 +115,7 @@ namespace {
 // The method's own species keys; the registry adds the common and the look keys.
 constexpr std::string_view kKeys[] = {
     "mode", "size", "cell", "dt", "speed", "mass", "profile", "q0", "trunk_q0", "amplitude",
-    "mean", "period", "field", "field_noise", "noise_scale", "field_tilt", "child_spacing",
+    "mean", "period", "field", "field_noise", "noise_scale", "field_tilt", "child_spacing", "trunk_clear",
     "max_curves", "max_depth", "scale", "spiral", FOREST_SKELETON_STYLE_KEYS};
 
 Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {

@@ -133,10 +133,20 @@ TreeGraph grow_mgv(const MgvGraph& mg, const MgvParams& P, uint64_t seed, MgvSta
       }
       return 0.0f;
     };
+    std::vector<uint32_t> sources;
+    for (uint32_t v : tree_nodes)
+      if (g.positions[v].y - g.positions[mg.root].y >= I.sources_above) sources.push_back(v);
+    if (sources.empty()) {  // nothing high enough yet: the iteration adds nothing
+      st.endpoints_per_iteration.push_back(0);
+      continue;
+    }
     ShortestPaths sp = dijkstra(
-        g, tree_nodes,
+        g, sources,
         [&](uint32_t u, uint32_t e) {
           uint32_t v = g.targets[e];
+          // A tree node below sources_above is not a way through (it is not a source).
+          if (tree_of[v] >= 0 && g.positions[v].y - g.positions[mg.root].y < I.sources_above)
+            return std::numeric_limits<float>::infinity();
           float len = g.lengths[e];
           glm::vec3 dir = (g.positions[v] - g.positions[u]) / len;
           return guided_weight(len, dir, guide[u]);

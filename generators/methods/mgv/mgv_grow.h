@@ -7,6 +7,7 @@
 // k hops from the tree, the outermost fraction t by hop count from the root.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -39,6 +40,10 @@ struct MgvIteration {
   float alpha1_lo = 0.0f, alpha1_hi = 0.0f;
   float theta = 0.0f;           // Axis rule
   EndpointPolicy policy = EndpointPolicy::Any;
+  // [ours] Only tree nodes at least this high (m above the root) are sources of this
+  // iteration's paths, so no branch of it leaves the stem lower: a clear bole, and the fork
+  // of a broadleaf's trunk at a chosen height. -inf: the whole tree, as in the thesis.
+  float sources_above = -std::numeric_limits<float>::infinity();
 };
 
 struct MgvParams {

@@ -4,7 +4,8 @@
 //   point ([x, y, z]), endpoints, hops (k), outer (t), rule = "piecewise" | "axis" |
 //   "height", alpha (deg, constant) or alpha1 / alpha2 (deg) / h0, alpha1_min / alpha1_max
 //   (deg, random α1 per source node), theta (deg, rule "axis"), policy = "any" | "hanging" |
-//   "upright", and [[iteration.volume]] tables (select = "volume"; see graph_volume.h);
+//   "upright", sources_above (m: only tree nodes this high start the iteration's paths), and
+//   [[iteration.volume]] tables (select = "volume"; see graph_volume.h);
 //   plus the skeleton style keys of graph_skeleton.h.
 #include "generators/methods/mgv/mgv_method.h"
 #include "generators/core/limits.h"
@@ -18,7 +19,7 @@ constexpr float kDeg = 3.14159265358979323846f / 180.0f;
 
 MgvIteration read_iteration(const TomlTable& t, size_t index) {
   t.check_keys({"select", "point", "endpoints", "hops", "outer", "rule", "alpha", "alpha1", "alpha2",
-                "h0", "alpha1_min", "alpha1_max", "theta", "policy", "volume"});
+                "h0", "alpha1_min", "alpha1_max", "theta", "policy", "sources_above", "volume"});
   MgvIteration I;
   std::string select = t.choice("select", index == 0 ? "point" : "hops", {"point", "volume", "hops"});
   I.select = select == "point" ? EndpointSelect::Point
@@ -52,6 +53,7 @@ MgvIteration read_iteration(const TomlTable& t, size_t index) {
   I.policy = policy == "hanging" ? EndpointPolicy::Hanging
              : policy == "upright" ? EndpointPolicy::Upright
                                    : EndpointPolicy::Any;
+  if (t.has("sources_above")) I.sources_above = float(t.number("sources_above", 0.0, 1000.0));
   for (const TomlTable& v : t.tables("volume")) I.volume.push_back(read_shape(v));
   if (I.select == EndpointSelect::Volume && I.volume.empty())
     t.fail("volume", "select = \"volume\" needs at least one [[iteration.volume]] table");

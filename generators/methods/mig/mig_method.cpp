@@ -1,6 +1,8 @@
 // Species keys of method "mig" (all optional unless marked; ranges are checked):
 //   name, seed, nodes (K), spacing (d, m; 0 = from K), reach (longest Yao edge / d), root
 //   ([x, y, z]), shell (d_e, m), subgraph_nodes (k), subgraph_radius (r, m), shrink (a),
+//   trunk_height (m, [ours]: a straight trunk before level 1, 0 = none) and trunk_sources =
+//   "top" | "all" (level-1 paths leave the trunk at its top, or at any of its nodes),
 //   [[volume]] tables (see graph_volume.h; required), [[level]] tables (required, level 1
 //   first): b, alpha (deg), rotate (deg, + = down), direction ([x, y, z]), around_all;
 //   and the skeleton style keys of graph_skeleton.h.
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "generators/core/rng.h"
 #include "generators/methods/common/graph_dijkstra.h"
@@ -42,13 +45,19 @@ glm::vec3 rotate_down(glm::vec3 v, float angle) {
 }
 
 // Graph of `root` (node 0) and up to `count` Poisson nodes inside, spacing d.
-YaoGraph make_graph(glm::vec3 root, const InsideFn& inside, Box box, size_t count, float d,
+// The graph's nodes: `stem` (a vertical run of points from the root; just the root when
+// there is no trunk), then the Poisson-disc points at least d from the stem's segment.
+YaoGraph make_graph(const std::vector<glm::vec3>& stem, const InsideFn& inside, Box box, size_t count, float d,
                     float reach, Rng& rng) {
   std::vector<glm::vec3> pts = poisson_disc(inside, box, count, d, rng, 40 * count + 1000);
-  std::vector<glm::vec3> nodes{root};
-  nodes.reserve(pts.size() + 1);
-  for (glm::vec3 p : pts)
-    if (glm::length(p - root) >= d) nodes.push_back(p);
+  std::vector<glm::vec3> nodes = stem;
+  nodes.reserve(pts.size() + stem.size());
+  const glm::vec3 root = stem.front();
+  const float top = stem.back().y - root.y;
+  for (glm::vec3 p : pts) {
+    glm::vec3 q = root + glm::vec3(0.0f, std::clamp(p.y - root.y, 0.0f, top), 0.0f);
+    if (glm::length(p - q) >= d) nodes.push_back(p);
+  }
   return build_yao8(std::move(nodes), reach * d);
 }
 
@@ -102,12 +111,42 @@ TreeGraph grow_mig(const MigParams& P, uint64_t seed, MigStats* stats) {
   InsideFn inside = [&](glm::vec3 p) { return volume_contains(P.volume, p); };
   float d = P.spacing > 0.0f ? P.spacing : spacing_for_count(estimate_volume(inside, box, rng), P.nodes);
   if (!(d > 0.0f)) throw InputError("mig: the level-1 volume is empty");
-  YaoGraph g = make_graph(P.root, inside, box, P.nodes, d, P.reach, rng);
+  // The straight trunk (graph nodes 0..m, tree nodes 0..m): R, then every d up to its top.
+  std::vector<glm::vec3> trunk{P.root};
+  if (P.trunk_height > 0.0f) {
+    int steps = std::max(1, int(std::ceil(P.trunk_height / d)));
+    for (int i = 1; i <= steps; ++i)
+      trunk.push_back(P.root + glm::vec3(0.0f, P.trunk_height * float(i) / float(steps), 0.0f));
+  }
+  YaoGraph g = make_graph(trunk, inside, box, P.nodes, d, P.reach, rng);
   st.graph_nodes += g.size();
-  uint32_t source = 0;
-  ShortestPaths sp = dijkstra_lengths(g, std::span<const uint32_t>(&source, 1));
+  const uint32_t trunk_nodes = uint32_t(trunk.size());
+  std::vector<int32_t> to_tree(g.size(), -1);
+  to_tree[0] = 0;
+  for (uint32_t i = 1; i < trunk_nodes; ++i) {
+    TreeNode node;
+    node.position = trunk[i];
+    node.parent = int32_t(i - 1);
+    tree.nodes.push_back(node);
+    to_tree[i] = int32_t(i);
+  }
+  std::vector<uint32_t> sources;
+  if (P.trunk_sources_all && trunk_nodes > 1)
+    for (uint32_t i = 1; i < trunk_nodes; ++i) sources.push_back(i);
+  else
+    sources.push_back(trunk_nodes - 1);
+  // Trunk nodes that are not sources are no way through: paths leave the trunk at a source.
+  std::vector<char> blocked(g.size(), 0);
+  for (uint32_t i = 0; i < trunk_nodes; ++i) blocked[i] = 1;
+  for (uint32_t s : sources) blocked[s] = 0;
+  ShortestPaths sp = dijkstra(
+      g, sources,
+      [&](uint32_t, uint32_t e) {
+        return blocked[g.targets[e]] ? std::numeric_limits<float>::infinity() : g.lengths[e];
+      },
+      [](uint32_t, int32_t, const ShortestPaths&) {});
   std::vector<uint32_t> candidates;
-  for (uint32_t v = 1; v < g.size(); ++v) {
+  for (uint32_t v = trunk_nodes; v < g.size(); ++v) {
     glm::vec3 p = g.positions[v];
     if (!volume_contains(crown, p)) continue;
     if (P.shell > 0.0f && !in_surface_shell(crown, p, P.shell)) continue;
@@ -116,8 +155,6 @@ TreeGraph grow_mig(const MigParams& P, uint64_t seed, MigStats* stats) {
     else
       ++st.unreachable;
   }
-  std::vector<int32_t> to_tree(g.size(), -1);
-  to_tree[0] = 0;
   std::vector<Endpoint> prev;
   for (uint32_t e : pick(candidates, size_t(P.levels.at(0).branching), rng))
     prev.push_back({add_path(g, sp, e, to_tree, tree, 0), g.positions[e], P.root});
@@ -145,10 +182,11 @@ TreeGraph grow_mig(const MigParams& P, uint64_t seed, MigStats* stats) {
       cone.angle = L.alpha;
       Rng sub_rng(hash64(seed, level, i), 2);
       YaoGraph sg = make_graph(
-          e.position, [&](glm::vec3 p) { return shape_contains(cone, p); }, shape_bounds(cone),
+          std::vector<glm::vec3>{e.position}, [&](glm::vec3 p) { return shape_contains(cone, p); }, shape_bounds(cone),
           P.subgraph_nodes, ds, P.reach, sub_rng);
       st.graph_nodes += sg.size();
       ++st.subgraphs;
+      const uint32_t source = 0;
       ShortestPaths ssp = dijkstra_lengths(sg, std::span<const uint32_t>(&source, 1));
       std::vector<uint32_t> reached;
       for (uint32_t v = 1; v < sg.size(); ++v) {
@@ -184,6 +222,10 @@ MigParams read_params(const TomlTable& t) {
   P.subgraph_nodes = size_t(t.integer("subgraph_nodes", 150, 4, 100000));
   P.subgraph_radius = float(t.number("subgraph_radius", 2.0, 1e-3, 1000.0));
   P.shrink = float(t.number("shrink", 0.7, 0.05, 2.0));
+  P.trunk_height = float(t.number("trunk_height", 0.0, 0.0, 1000.0));
+  std::string sources = t.choice("trunk_sources", "top", {"top", "all"});
+  if (t.has("trunk_sources") && P.trunk_height <= 0.0f) t.fail("trunk_sources", "needs trunk_height > 0");
+  P.trunk_sources_all = sources == "all";
   for (const TomlTable& v : t.tables("volume")) P.volume.push_back(read_shape(v));
   if (P.volume.empty()) t.fail("volume", "at least one [[volume]] table is required");
   bool any_endpoints = false;
@@ -228,7 +270,7 @@ MigParams read_params(const TomlTable& t) {
 // The method's own species keys; the registry adds the common and the look keys.
 constexpr std::string_view kKeys[] = {
     "nodes", "spacing", "reach", "root", "shell", "subgraph_nodes", "subgraph_radius", "shrink",
-    "volume", "level", FOREST_SKELETON_STYLE_KEYS};
+    "trunk_height", "trunk_sources", "volume", "level", FOREST_SKELETON_STYLE_KEYS};
 
 Skeleton skeleton_pass(const TomlTable& t, uint64_t seed) {
   MigParams P = read_params(t);

@@ -4,7 +4,8 @@
 // read from ONE Dijkstra run's parent pointers. Level ℓ > 1: around every endpoint e of the
 // previous level a subgraph in the part of a sphere (e, r) within angle α of the growth
 // vector v_g = (e − R)/|e − R| (optionally rotated about the horizontal, or fixed), k nodes,
-// b endpoints joined to e; r shrinks by a per level. No edges between subgraphs.
+// b endpoints joined to e; r shrinks by a per level. No edges between subgraphs. [ours]
+// An optional straight trunk (MigParams::trunk_height) is the start of the level-1 paths.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -36,6 +37,12 @@ struct MigParams {
   size_t subgraph_nodes = 150;          // k
   float subgraph_radius = 2.0f;         // r at level 2
   float shrink = 0.7f;                  // a
+  // [ours] A straight trunk from R up to R + trunk_height·up (nodes every d) before level 1;
+  // 0: none, the level-1 paths start at R (the thesis). Its top is where the level-1 paths
+  // leave it (a broadleaf's bole under a decurrent crown), or with trunk_sources_all any of
+  // its nodes above R (an excurrent leader with branches along it).
+  float trunk_height = 0.0f;
+  bool trunk_sources_all = false;
   std::vector<MigLevel> levels;         // levels[0] is level 1
 };
 
