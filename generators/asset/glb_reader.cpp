@@ -267,6 +267,22 @@ bool no_write(std::string* err, const std::string&, const std::vector<unsigned c
   if (err) *err = "writing files is not supported";
   return false;
 }
+// True when `bytes` is a PNG with an empty IDAT chunk. stb_image copies such a chunk into a
+// buffer it has not allocated yet (memcpy from a null pointer, undefined behaviour), so
+// those are refused before it sees them; a PNG writer never emits one.
+bool png_with_empty_idat(const unsigned char* bytes, size_t size) {
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size < 8 || std::memcmp(bytes, kSignature, 8) != 0) return false;
+  for (size_t at = 8; at + 8 <= size;) {
+    uint32_t length = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 |
+                      uint32_t(bytes[at + 3]);
+    if (std::memcmp(bytes + at + 4, "IDAT", 4) == 0 && length == 0) return true;
+    if (std::memcmp(bytes + at + 4, "IEND", 4) == 0) return false;
+    at += 12 + size_t(length);
+  }
+  return false;
+}
+
 // Embedded images (buffer views) are decoded by stb_image to RGBA8, within a size limit.
 // `model` is the asset being loaded: tinygltf hands over a buffer view's bytes without
 // checking that the view lies inside its buffer, so that is checked here (a view reaching
@@ -282,6 +298,10 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
   }
   if (!inside) {
     if (err) *err = "image " + std::to_string(index) + ": its buffer view reaches past its buffer";
+    return false;
+  }
+  if (size > 0 && png_with_empty_idat(bytes, size_t(size))) {
+    if (err) *err = "image " + std::to_string(index) + ": a PNG with an empty IDAT chunk";
     return false;
   }
   int w = 0, h = 0, comp = 0;
