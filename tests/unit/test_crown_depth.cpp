@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "generators/core/rng.h"
+#include "generators/core/hull_2d.h"
 #include "generators/tree/convex_hull.h"
 #include "generators/tree/crown_depth.h"
 
@@ -223,4 +224,22 @@ TEST(CrownDepth, NoLeavesOrFlatLeaves) {
   EXPECT_FALSE(flat.solid);
   EXPECT_FLOAT_EQ(flat.q3, 0.0f);
   EXPECT_FLOAT_EQ(flat.histogram[0], 1.0f);
+}
+
+TEST(ConvexHull2d, CornersOnlyCounterClockwise) {
+  // A square with points inside, on its edges and repeated: the hull is its 4 corners, CCW
+  // from the lowest-leftmost; exact on integers, the same on doubles.
+  std::vector<glm::i64vec2> p{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {2, 0}, {4, 2}, {1, 1}, {2, 3}, {0, 0}, {4, 4}, {0, 2}};
+  std::vector<glm::i64vec2> h = convex_hull_2d(p);
+  ASSERT_EQ(h.size(), 4u);
+  EXPECT_EQ(h[0], glm::i64vec2(0, 0));
+  EXPECT_EQ(h[1], glm::i64vec2(4, 0));
+  EXPECT_EQ(h[2], glm::i64vec2(4, 4));
+  EXPECT_EQ(h[3], glm::i64vec2(0, 4));
+  std::vector<glm::dvec2> d;
+  for (glm::i64vec2 q : p) d.push_back(glm::dvec2(q) * 0.5);
+  std::vector<glm::dvec2> hd = convex_hull_2d(d);
+  ASSERT_EQ(hd.size(), 4u);
+  EXPECT_EQ(hd[2], glm::dvec2(2.0, 2.0));
+  EXPECT_EQ(convex_hull_2d(std::vector<glm::dvec2>{{1, 1}, {1, 1}}).size(), 1u);
 }

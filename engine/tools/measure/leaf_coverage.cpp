@@ -5,34 +5,15 @@
 #include <limits>
 
 #include "engine/tools/gallery/contact_sheet.h"
+#include "generators/core/hull_2d.h"
 #include "generators/mesh/mesher.h"
 
 namespace forest {
 
 namespace {
 
+// Pixel corners: integer points, so the hull's decisions are exact.
 using Point = glm::i64vec2;
-
-int64_t cross(Point o, Point a, Point b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
-
-// Andrew's monotone chain on integer points (exact); counter-clockwise, no repeated ends.
-std::vector<Point> hull_2d(std::vector<Point> p) {
-  std::sort(p.begin(), p.end(), [](Point a, Point b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<Point> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
 
 }  // namespace
 
@@ -51,7 +32,7 @@ MaskCoverage mask_coverage(const FrameImage& mask) {
     if (first < 0) continue;
     for (int64_t dy : {0, 1}) corners.push_back({first, y + dy}), corners.push_back({last + 1, y + dy});
   }
-  std::vector<Point> h = hull_2d(std::move(corners));
+  std::vector<Point> h = convex_hull_2d(std::move(corners));
   int64_t twice = 0;  // shoelace
   for (size_t i = 0; i < h.size(); ++i) {
     Point a = h[i], b = h[(i + 1) % h.size()];

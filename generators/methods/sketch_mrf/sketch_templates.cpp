@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generators/core/hull_2d.h"
 #include "generators/methods/lsystem/lsystem.h"
 
 namespace forest {
@@ -75,25 +76,6 @@ SketchTree as_sketch_tree(const SketchTemplate& t, int view, std::vector<double>
   return s;
 }
 
-std::vector<glm::dvec2> convex_hull(std::vector<glm::dvec2> p) {
-  std::sort(p.begin(), p.end(), [](glm::dvec2 a, glm::dvec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
-  if (p.size() < 3) return p;
-  auto cross = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-  };
-  std::vector<glm::dvec2> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
 
 SketchTemplate build(const TemplateRecipe& r) {
   LSystem system{r.axiom, r.productions};
@@ -160,7 +142,7 @@ int find_sketch_template(const std::string& name) {
 
 std::vector<double> footprint_descriptor(const std::vector<glm::dvec2>& points) {
   std::vector<double> f(kFootprintDirections, 0.0);
-  std::vector<glm::dvec2> hull = convex_hull(points);
+  std::vector<glm::dvec2> hull = convex_hull_2d(points);
   if (hull.size() < 3) return f;
   glm::dvec2 lo(1e300), hi(-1e300);
   for (glm::dvec2 p : hull) lo = glm::min(lo, p), hi = glm::max(hi, p);
@@ -270,7 +252,7 @@ Drawing project_template(const SketchTemplate& t, int view, int generations, boo
     out.strokes.push_back(std::move(st));
   }
   if (with_crown) {
-    std::vector<glm::dvec2> hull = convex_hull(std::vector<glm::dvec2>(s.xy.begin() + 1, s.xy.end()));
+    std::vector<glm::dvec2> hull = convex_hull_2d(std::vector<glm::dvec2>(s.xy.begin() + 1, s.xy.end()));
     Stroke crown;
     crown.id = "crown";
     crown.role = "crown";
