@@ -24,7 +24,7 @@ struct GenerateOptions {
 
 // Keys of every species file besides the method's own, the look keys (kLookKeys), the
 // foliage keys (kFoliageKeys) and the [habit] ranges (kHabitKeys, tree/habit_ranges.h; the
-// registry checks them and does not pass them to the method).
+// registry checks them, and no method reads them).
 inline constexpr std::string_view kCommonSpeciesKeys[] = {"method", "name", "seed"};
 
 // One modeling method. Each lives in generators/methods/<id>/, exports its entry from

@@ -1,8 +1,8 @@
 // The botanical habit a species preset claims for itself, as data: an optional [habit] table
 // of the preset (cited in its comments) with the ranges its generated tree must measure
-// inside (habit.h). The registry checks the table before the skeleton pass and hides it from
-// the method (it shapes nothing); `forest measure` prints each metric against its range and
-// a unit test holds every preset to its ranges.
+// inside (habit.h). The registry checks the table before the skeleton pass; no method reads
+// it (it shapes nothing). `forest measure` prints each metric against its range and a unit
+// test holds every preset to its ranges.
 //
 //   [habit]
 //   crown_width_over_height = [0.6, 1.0]   # HabitMetrics::crown_ratio
