@@ -43,6 +43,7 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
   FrameSettings settings = scene_frame_settings(scene.desc);
   settings.prune_mode = mode.prune_mode;
   settings.occlusion = mode.occlusion;
+  settings.shadows = mode.shadows;
   settings.mask = settings.lambda_view = settings.wireframe = false;
   uint64_t terrain_and_sky = scene.terrain.mesh().indices.size() / 3 + 1;  // sky: one full-screen triangle
   uint64_t card_triangles = scene.models.empty() ? 0 : scene.models[0].leaf_card.indices.size() / 3;

@@ -21,6 +21,7 @@ struct BenchMode {
   PruneMode prune_mode = PruneMode::full;
   bool occlusion = false;
   bool combined_priority = false;
+  bool shadows = false;  // the sun's shadow maps (--shadows); the name then ends in "+shadows"
 };
 std::optional<BenchMode> bench_mode(const std::string& name);
 const std::vector<std::string>& bench_mode_names();

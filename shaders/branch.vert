@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Bark: one indirect draw per visible tree; gl_DrawID finds the tree instance.
+// Bark: one indirect draw per visible (or shadow-casting) tree; gl_DrawID finds the tree instance.
 #extension GL_ARB_shader_draw_parameters : require
 #include "common.glsl"
+#include "draw_push.glsl"
 
 layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
 
@@ -16,7 +17,7 @@ layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 
 void main() {
-  DrawCommand d = commands[gl_DrawIDARB];
+  DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
   Instance inst = instances[d.instance];
   Model m = models[inst.model];
   vec3 world = rotate_yaw(in_position, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
@@ -29,5 +30,5 @@ void main() {
   out_ao_translucency = vec2(0.8, 0.0);
   out_uv_layer = vec3(in_uv, float(m.bark_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda) * 0.6;
-  gl_Position = frame.view_proj * vec4(world, 1.0);
+  gl_Position = draw_view_proj() * vec4(world, 1.0);
 }

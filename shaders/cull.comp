@@ -8,18 +8,12 @@
 // those the previous frame could see.
 #include "common.glsl"
 #include "occlusion.glsl"
+#include "tree_detail.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_DRAW_COUNTS, std430) buffer Counts { DrawCounts counts; };
 layout(set = 0, binding = BINDING_TAIL_JOBS, std430) writeonly buffer TailJobs { TailJob tail_jobs[]; };
-
-// s_opt(λ) from the model's table, linearly interpolated.
-float opt_area_scale(Model m, float lambda) {
-  float spos = clamp(lambda, 0.0, 1.0) * float(S_SAMPLES - 1);
-  uint sat = m.table_offset + uint(spos);
-  return mix(prune_tables[sat], prune_tables[min(sat + 1, m.table_offset + S_SAMPLES - 1)], fract(spos));
-}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -41,20 +35,8 @@ void main() {
     if (m.lod_error[k] * s * frame.lod.x / dist <= frame.lod.y) lod = k;
 
   // Detail level λ and leaf area scale s from the normalized distance d.
-  float d = clamp(distance(center, frame.lod_camera.xyz) / frame.prune.x, 0.0, 1.0);
-  float lambda = 1.0, area_scale = 1.0;
-  if (frame.prune_mode == PRUNE_COOK) {
-    lambda = lambda_cook(d);
-    area_scale = 1.0 / max(lambda, 1e-3);
-  } else if (frame.prune_mode == PRUNE_OPT && m.has_tables != 0) {
-    float pos = d_table_position(d);
-    uint at = m.table_offset + S_SAMPLES + uint(pos);
-    lambda = mix(prune_tables[at], prune_tables[min(at + 1, m.table_offset + TABLE_FLOATS - 1)], fract(pos));
-    area_scale = opt_area_scale(m, lambda);
-  } else if (frame.prune_mode == PRUNE_FIXED) {
-    lambda = frame.prune.z;
-    area_scale = frame.prune.w;
-  }
+  float lambda, area_scale;
+  tree_detail(m, distance(center, frame.lod_camera.xyz), lambda, area_scale);
   uint k = leaf_prefix(lambda, m.leaf_count);
   float shown_lambda = lambda;
 

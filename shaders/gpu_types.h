@@ -38,6 +38,7 @@ using mat4 = glm::mat4;
 #define BINDING_TAIL_LEAVES 15     // leaf indices of the visible tails, in priority order
 #define BINDING_BARK_ALBEDO 16     // sampler2DArray: bark colour, one layer per bark (Model.bark_texture_layer)
 #define BINDING_BARK_NORMALS 17    // sampler2DArray: bark tangent-space normal maps, the same layers
+#define BINDING_SHADOW_MAP 18      // sampler2DArrayShadow: the sun's cascaded shadow map, one layer per cascade
 
 // Descriptor bindings of depth_pyramid.comp's set (one set per pyramid level).
 #define PYRAMID_BINDING_SOURCE 0       // sampler2D: the depth buffer (level 0) or the level above
@@ -66,6 +67,14 @@ using mat4 = glm::mat4;
 // FrameData.view_flags
 #define VIEW_LAMBDA 1  // color trees by their detail level λ (Fig 7.15)
 #define VIEW_MASK 2    // write coverage only (white): PR measurement
+#define VIEW_SHADOW 4  // grey = the sun's shadow-map visibility (tests, debugging)
+
+// Cascaded shadow maps of the sun (shadow_pass.h): cascades over [near, shadow_distance].
+#define SHADOW_CASCADES 3
+#define SHADOW_NONE 0xffffffffu  // DrawPush.cascade of the camera's own draws
+// The command buffer holds, for n instances: the camera's n branch draws, its 2n leaf draws
+// (prefix and occlusion tail), then per cascade n branch draws followed by n leaf draws.
+#define COMMANDS_PER_INSTANCE (3 + 2 * SHADOW_CASCADES)
 
 // Per-model PR tables (floats in the prune table buffer, at Model.table_offset):
 // s_opt at λ = i / (S_SAMPLES − 1), then λ_opt at the D_SAMPLES distances of d_sample().
@@ -109,7 +118,26 @@ GPU_STRUCT FrameData {
   uint occlusion;          // OCCLUSION_*
   uint tail_capacity;      // entries of the tail leaf buffer (BINDING_TAIL_LEAVES)
   uint tail_job_capacity;  // TailJobs per frame: instances, at most maxComputeWorkGroupCount[0]
-  uint pad2;
+  uint shadows;            // 1: the shadow pass ran, shaders sample the shadow map
+  // Sun shadows (shadow_pass.h, shadow_cascades.h). Cascade c covers view depths up to
+  // shadow_splits[c] (metres along camera_forward); its light-space matrix maps world points
+  // to [-1, 1]² × [0, 1] depth (0 toward the sun).
+  mat4 shadow_view_proj[SHADOW_CASCADES];
+  vec4 shadow_planes[SHADOW_CASCADES * 6];  // each cascade's caster volume, as frustum[]
+  vec4 shadow_splits;   // xyz = far view depth of cascades 0..2, w = shadow distance
+  vec4 shadow_texel;    // xyz = world size of one texel of cascades 0..2, w = texels per side
+  vec4 camera_forward;  // xyz unit view direction (view depth = dot(p − camera_pos, it))
+  vec4 light;           // x = exposure (scene-linear multiplier before the tone map)
+};
+
+// Push constants of the tree and terrain vertex shaders: where a draw's commands start and
+// which camera projects it. The camera's own draws use frame.view_proj (cascade SHADOW_NONE);
+// the shadow pass draws each cascade with frame.shadow_view_proj[cascade]. Placed after
+// PrCountPush (offset 16) so the compute and vertex ranges of the shared layout do not overlap.
+#define DRAW_PUSH_OFFSET 16
+struct DrawPush {
+  uint command_base;  // index of the draw's first DrawCommand (gl_DrawID counts from it)
+  uint cascade;       // SHADOW_NONE, or the cascade being drawn
 };
 
 // One tree instance in the scene: placed once at load, never touched per frame by the CPU.
@@ -209,6 +237,11 @@ struct DrawCounts {
   uint tail_jobs;
   uint tail_groups_y, tail_groups_z;  // 1, written by cull.comp
   uint tail_leaves;                   // tail leaf buffer entries reserved (may pass the capacity)
+  // shadow_cull.comp, per cascade: branch draws (= caster trees), leaf draws, and triangles.
+  uint shadow_branch_draws[SHADOW_CASCADES];
+  uint shadow_leaf_draws[SHADOW_CASCADES];
+  uint shadow_triangles[SHADOW_CASCADES];
+  uint shadow_leaves[SHADOW_CASCADES];
 };
 
 // Pixel counts of one coverage comparison (pr_count.comp).

@@ -5,6 +5,7 @@
 // occluded tree has a second draw, of the leaves tail_cull.comp kept, listed by index.
 #extension GL_ARB_shader_draw_parameters : require
 #include "common.glsl"
+#include "draw_push.glsl"
 
 layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_TAIL_LEAVES, std430) readonly buffer TailLeaves { uint tail_leaves[]; };
@@ -24,7 +25,7 @@ float hash(uint x) {
 }
 
 void main() {
-  DrawCommand d = commands[frame.leaf_command_base + gl_DrawIDARB];
+  DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
   Instance inst = instances[d.instance];
   Model m = models[inst.model];
   uint leaf_index = d.leaf_list == LEAF_LIST_TAIL ? tail_leaves[gl_InstanceIndex] : uint(gl_InstanceIndex);
@@ -46,5 +47,5 @@ void main() {
   // Leaves deep inside the crown see less sky: a cheap occlusion term from the crown sphere.
   float depth = length(local - m.bounding_sphere.xyz) / max(m.bounding_sphere.w, 1e-3);
   out_ao_translucency = vec2(mix(0.35, 1.0, clamp(depth * 1.3 - 0.2, 0.0, 1.0)), 0.45);
-  gl_Position = frame.view_proj * vec4(world, 1.0);
+  gl_Position = draw_view_proj() * vec4(world, 1.0);
 }

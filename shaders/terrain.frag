@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Ground: grass on gentle slopes, soil and rock on steep ones, with a little noise.
 #include "common.glsl"
+#include "lighting.glsl"
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
@@ -25,5 +26,10 @@ void main() {
   float patches = 0.6 * value_noise(in_world.xz * 0.08) + 0.4 * value_noise(in_world.xz * 0.5);
   albedo *= 0.75 + 0.5 * patches;
   albedo = mix(albedo, soil, 0.35 * smoothstep(0.55, 0.8, value_noise(in_world.xz * 0.03 + 17.0)));
-  out_color = vec4(shade(albedo, n, in_world, 1.0, 0.0), 1.0);
+  float sun_visibility = sun_shadow(in_world, n);
+  if ((frame.view_flags & VIEW_SHADOW) != 0) {
+    out_color = vec4(vec3(sun_visibility), 1.0);
+    return;
+  }
+  out_color = vec4(tone_map(shade(albedo, n, in_world, 1.0, 0.0, sun_visibility)), 1.0);
 }

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "draw_push.glsl"
 
 layout(location = ATTR_POSITION) in vec3 in_position;
 layout(location = ATTR_NORMAL) in vec3 in_normal;
@@ -11,5 +12,5 @@ layout(location = 1) out vec3 out_normal;
 void main() {
   out_world = in_position;
   out_normal = in_normal;
-  gl_Position = frame.view_proj * vec4(in_position, 1.0);
+  gl_Position = draw_view_proj() * vec4(in_position, 1.0);
 }

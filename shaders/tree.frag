@@ -6,6 +6,7 @@
 // are the paler undersides. Bark takes its colour from the bark albedo array and perturbs
 // its normal by the bark normal map, in a tangent frame from screen-space derivatives.
 #include "common.glsl"
+#include "lighting.glsl"
 
 layout(constant_id = SPEC_LEAF) const bool LEAF = false;
 layout(constant_id = SPEC_ALPHA_TO_COVERAGE) const bool ALPHA_TO_COVERAGE = false;
@@ -68,5 +69,11 @@ void main() {
     albedo *= texture(bark_albedo, in_uv_layer).rgb;
     n = perturb_normal(n, in_world, in_uv_layer.xy, texture(bark_normals, in_uv_layer).xyz * 2.0 - 1.0);
   }
-  out_color = vec4(shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y), clamp(alpha, 0.0, 1.0));
+  float sun_visibility = sun_shadow(in_world, n);
+  if ((frame.view_flags & VIEW_SHADOW) != 0) {
+    out_color = vec4(vec3(sun_visibility), clamp(alpha, 0.0, 1.0));
+    return;
+  }
+  vec3 hdr = shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y, sun_visibility);
+  out_color = vec4(tone_map(hdr), clamp(alpha, 0.0, 1.0));
 }

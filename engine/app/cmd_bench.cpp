@@ -34,6 +34,7 @@ struct ModeSummary {
   double gpu_frame_ms = 0, gpu_draw_ms = 0, gpu_cull_ms = 0, gpu_pyramid_ms = 0, cpu_ms = 0;
   double triangles = 0, vertices = 0, leaves = 0, visible = 0, lambda = 0, quality = 0, precision = 0, recall = 0;
   double leaves_saved = 0, triangles_saved = 0, occluded = 0;  // by occlusion feedback, per frame
+  double gpu_shadow_ms = 0, shadow_casters[SHADOW_CASCADES] = {}, shadow_triangles[SHADOW_CASCADES] = {};
   uint32_t pr_frames = 0;
   // Shares of what the mode would draw without occlusion, and of the GPU frame.
   double leaves_saved_share() const { return leaves_saved / std::max(leaves + leaves_saved, 1.0); }
@@ -52,6 +53,9 @@ ModeSummary summarize(const BenchMode& mode, std::vector<BenchFrame> frames) {
     s.leaves += f.stats.leaves_drawn / n, s.visible += f.stats.branch_draws / n, s.lambda += f.stats.mean_lambda / n;
     s.leaves_saved += f.stats.leaves_saved / n, s.triangles_saved += f.stats.triangles_saved / n;
     s.occluded += f.stats.occluded_instances / n;
+    s.gpu_shadow_ms += f.stats.shadow_ms / n;
+    for (int c = 0; c < SHADOW_CASCADES; ++c)
+      s.shadow_casters[c] += f.stats.shadow_casters[c] / n, s.shadow_triangles[c] += f.stats.shadow_triangles[c] / n;
     if (f.has_pr) {
       s.pr_frames++;
       s.quality += f.pr.quality(), s.precision += f.pr.precision(), s.recall += f.pr.recall();
@@ -66,7 +70,7 @@ std::string frames_csv(const ModeSummary& m) {
   std::ostringstream o;
   o << "frame,time_s,gpu_cull_ms,gpu_draw_ms,gpu_pyramid_ms,gpu_frame_ms,cpu_ms,ia_primitives,tree_triangles,"
        "branch_triangles,leaves_drawn,instances_visible,occluded_instances,leaves_saved,triangles_saved,mean_lambda,"
-       "precision,recall,q\n";
+       "gpu_shadow_ms,shadow_triangles,precision,recall,q\n";
   char buf[512];
   for (const BenchFrame& f : m.frames) {
     const FrameStats& s = f.stats;
@@ -75,6 +79,10 @@ std::string frames_csv(const ModeSummary& m) {
                   (unsigned long long)s.draw_pipeline.ia_primitives, (unsigned long long)f.tree_triangles,
                   s.branch_triangles, s.leaves_drawn, s.branch_draws, s.occluded_instances, s.leaves_saved,
                   s.triangles_saved, s.mean_lambda);
+    o << buf;
+    uint64_t shadow_triangles = 0;
+    for (uint32_t t : s.shadow_triangles) shadow_triangles += t;
+    std::snprintf(buf, sizeof buf, "%.4f,%llu,", s.shadow_ms, (unsigned long long)shadow_triangles);
     o << buf;
     if (f.has_pr) {
       std::snprintf(buf, sizeof buf, "%.5f,%.5f,%.5f", f.pr.precision(), f.pr.recall(), f.pr.quality());
@@ -87,7 +95,12 @@ std::string frames_csv(const ModeSummary& m) {
   return o.str();
 }
 
-glm::vec3 mode_color(const std::string& name) {
+glm::vec3 mode_color(std::string name) {
+  const std::string suffix = "+shadows";
+  if (name.size() > suffix.size() && name.ends_with(suffix)) {  // the same hue, darker
+    name.resize(name.size() - suffix.size());
+    return mode_color(name) * 0.6f;
+  }
   if (name == "full") return {0.1f, 0.1f, 0.1f};
   if (name == "cook") return {0.85f, 0.25f, 0.15f};
   if (name == "opt") return {0.1f, 0.35f, 0.85f};
@@ -141,6 +154,16 @@ struct BenchPlan {
   const CameraPath& camera_path() const { return desc.paths[path]; }
 };
 
+// --shadows: the shadow settings every mode is played with, in order.
+std::vector<bool> parse_shadows(const std::string& text, bool scene_default) {
+  if (text.empty()) return {scene_default};
+  if (text == "on") return {true};
+  if (text == "off") return {false};
+  if (text == "on,off") return {true, false};
+  if (text == "off,on") return {false, true};
+  throw InputError("--shadows", 0, text, "expected on, off or on,off");
+}
+
 std::vector<BenchMode> parse_modes(const std::string& text) {
   std::vector<BenchMode> modes;
   std::stringstream list(text);
@@ -162,7 +185,12 @@ BenchPlan plan_bench(const BenchArgs& args) {
   const CameraPath* path = args.path.empty() ? &desc.paths.front() : find_path(desc, args.path);
   if (!path) throw InputError(args.scene, 0, "--path", "no [[path]] named '" + args.path + "'");
   plan.path = size_t(path - desc.paths.data());
-  plan.modes = parse_modes(args.modes);
+  for (bool shadows : parse_shadows(args.shadows, desc.shadows))
+    for (BenchMode m : parse_modes(args.modes)) {
+      m.shadows = shadows;
+      if (shadows) m.name += "+shadows";
+      plan.modes.push_back(m);
+    }
   plan.out = args.out;
   if (!std::filesystem::is_directory(plan.out))
     throw InputError(args.out, 0, "--out", "is not an existing folder");
@@ -226,7 +254,12 @@ struct BenchReport {
   const BenchArgs& args;
   const BenchPlan& plan;
   const std::vector<ModeSummary>& modes;
-  const ModeSummary* cook;  // null when cook was not played
+  // Cook played with the same shadow setting as `m` (null when it was not).
+  const ModeSummary* cook(const ModeSummary& m) const {
+    for (const ModeSummary& c : modes)
+      if (c.mode.prune_mode == PruneMode::cook && !c.mode.occlusion && c.mode.shadows == m.mode.shadows) return &c;
+    return nullptr;
+  }
   size_t instances;         // trees in the scene
   ThroughputResult raw;
   std::string device, driver;
@@ -315,6 +348,11 @@ nlohmann::ordered_json mode_json(const ModeSummary& m, const ModeSummary* cook, 
                       {"triangles_saved_share", m.triangles_saved_share()},
                       {"instances_culled", m.occluded},
                       {"gpu_pyramid_and_cull_share", m.occlusion_gpu_share()}};
+  if (m.mode.shadows)
+    e["shadows"] = {{"gpu_shadow_ms", m.gpu_shadow_ms},
+                    {"gpu_frame_share", m.gpu_frame_ms > 0 ? m.gpu_shadow_ms / m.gpu_frame_ms : 0.0},
+                    {"casters_per_cascade", m.shadow_casters},
+                    {"triangles_per_cascade", m.shadow_triangles}};
   e["pr_frames"] = m.pr_frames;
   e["precision"] = m.precision;
   e["recall"] = m.recall;
@@ -388,6 +426,30 @@ std::string occlusion_note(const ModeSummary& m) {
   return row;
 }
 
+// A paragraph of summary.md on what the sun's shadows cost `m` (a mode played with them),
+// against the same mode without them when that was played too.
+std::string shadow_note(const ModeSummary& m, const std::vector<ModeSummary>& modes) {
+  const ModeSummary* off = nullptr;
+  for (const ModeSummary& o : modes)
+    if (!o.mode.shadows && o.mode.prune_mode == m.mode.prune_mode && o.mode.occlusion == m.mode.occlusion &&
+        o.mode.combined_priority == m.mode.combined_priority)
+      off = &o;
+  char row[768];
+  std::snprintf(row, sizeof row,
+                "\nShadows (%s), mean per frame: shadow pass %.2f ms = %.1f %% of the GPU frame (goal <= 35 %% on "
+                "lavapipe); casters per cascade %.0f / %.0f / %.0f, shadow triangles %.0f / %.0f / %.0f",
+                m.mode.name.c_str(), m.gpu_shadow_ms, m.gpu_frame_ms > 0 ? 100.0 * m.gpu_shadow_ms / m.gpu_frame_ms : 0.0,
+                m.shadow_casters[0], m.shadow_casters[1], m.shadow_casters[2], m.shadow_triangles[0],
+                m.shadow_triangles[1], m.shadow_triangles[2]);
+  std::string note = row;
+  if (off && off->gpu_frame_ms > 0) {
+    std::snprintf(row, sizeof row, "; GPU frame time with shadows / without (%s): %.2fx", off->mode.name.c_str(),
+                  m.gpu_frame_ms / off->gpu_frame_ms);
+    note += row;
+  }
+  return note + ".\n";
+}
+
 // summary.json, summary.md, frames_<mode>.csv and the two plots, with the table on stdout.
 void write_bench_results(const BenchReport& r) {
   const SceneDesc& desc = r.plan.desc;
@@ -401,15 +463,22 @@ void write_bench_results(const BenchReport& r) {
   std::printf("%-13s %10s %10s %9s %9s %7s %7s %9s %9s\n", "mode", "triangles", "vs cook", "frame ms",
               "vs cook", "Q", "Q-cook", "mean lam", "tri/s %");
   for (const ModeSummary& m : r.modes) {
-    VsCook v = compare_to_cook(m, r.cook, r.raw);
-    j["modes"][m.mode.name] = mode_json(m, r.cook, v);
-    print_mode_row(m, r.cook, v);
-    md << markdown_row(m, r.cook, v);
+    const ModeSummary* cook = r.cook(m);
+    VsCook v = compare_to_cook(m, cook, r.raw);
+    j["modes"][m.mode.name] = mode_json(m, cook, v);
+    print_mode_row(m, cook, v);
+    md << markdown_row(m, cook, v);
     write_text_file(out / ("frames_" + m.mode.name + ".csv"), frames_csv(m));
   }
   for (const ModeSummary& m : r.modes) {
     if (!m.mode.occlusion) continue;
     std::string note = occlusion_note(m);
+    md << note;
+    std::printf("%s", note.c_str() + 1);
+  }
+  for (const ModeSummary& m : r.modes) {
+    if (!m.mode.shadows) continue;
+    std::string note = shadow_note(m, r.modes);
     md << note;
     std::printf("%s", note.c_str() + 1);
   }
@@ -422,13 +491,6 @@ void write_bench_results(const BenchReport& r) {
   write_path_plot(r.modes, "GPU frame time (" + label + ")", "ms",
                   [](const BenchFrame& f) { return f.stats.frame_ms; }, out / "frame_time.png");
   std::printf("wrote %s: summary.json, summary.md, frames_<mode>.csv, triangles.png, frame_time.png\n", out.c_str());
-}
-
-const ModeSummary* find_cook(const std::vector<ModeSummary>& results) {
-  const ModeSummary* cook = nullptr;
-  for (const ModeSummary& m : results)
-    if (m.mode.name == "cook") cook = &m;
-  return cook;
 }
 
 }  // namespace
@@ -448,7 +510,7 @@ int run_bench(const BenchArgs& args) {
   std::vector<ModeSummary> results = play_modes(ctx, scene, build, plan, args);
   ThroughputResult raw = probe_throughput(ctx, plan.desc, args.probe_instances);
   if (validation_failed(ctx, "results", true)) return 1;
-  write_bench_results({args, plan, results, find_cook(results), scene.instances.size(), raw,
+  write_bench_results({args, plan, results, scene.instances.size(), raw,
                        ctx.properties.deviceName, driver_name(ctx)});
   return 0;
 }

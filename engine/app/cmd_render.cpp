@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "engine/app/app_common.h"
@@ -36,9 +37,14 @@ void print_pipeline_stats(const char* pass, const PipelineStats& s) {
               (unsigned long long)s.clip_primitives, (unsigned long long)s.fs_invocations);
 }
 
-// --width, --height, --mode and --view over the scene file's [render] settings.
+// --width, --height, --mode, --view, --sun and --exposure over the scene file's settings.
 void override_render_settings(SceneDesc& desc, const RenderArgs& args) {
   override_size(desc, args.width, args.height);
+  if (args.sun) {  // azimuth from +x toward +z, elevation above the horizon, degrees
+    float az = glm::radians(args.sun->x), el = glm::radians(args.sun->y);
+    desc.sky.sun_direction = {std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)};
+  }
+  if (args.exposure) desc.exposure = *args.exposure;
   if (!args.mode.empty())
     desc.prune_mode = *parse_prune_mode(args.mode);  // CLI11 checked it against prune_mode_names()
   if (!args.view.empty()) {
@@ -67,6 +73,7 @@ FrameStats render_still(vk::Context& ctx, const Scene& scene, const SceneDesc& d
   times.upload = clock::now();
   FrameSettings settings = scene_frame_settings(desc);
   if (args.occlusion) settings.occlusion = *args.occlusion;
+  if (args.shadows) settings.shadows = *args.shadows;
   settings.pyramid_overlay = args.overlay == "pyramid";
   // Occlusion feeds back from one frame to the next: a still picture shows the steady
   // state, after the hidden trees have thinned out (kWarmupFrames from the same camera).
@@ -97,6 +104,13 @@ void print_render_stats(const FrameStats& stats, const Scene& scene, const Rende
   if (occlusion)
     std::printf("occlusion: %u trees culled, %u leaves and %u triangles saved; GPU pyramid %.2f ms\n",
                 stats.occluded_instances, stats.leaves_saved, stats.triangles_saved, stats.pyramid_ms);
+  if (stats.shadow_ms > 0.0) {
+    std::printf("shadows: GPU %.1f ms (%.1f %% of the frame); casters per cascade", stats.shadow_ms,
+                stats.frame_ms > 0.0 ? 100.0 * stats.shadow_ms / stats.frame_ms : 0.0);
+    for (int c = 0; c < SHADOW_CASCADES; ++c)
+      std::printf(" %u (%u triangles)", stats.shadow_casters[c], stats.shadow_triangles[c]);
+    std::printf("\n");
+  }
 }
 
 }  // namespace

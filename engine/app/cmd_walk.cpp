@@ -76,6 +76,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_2: s.settings.prune_mode = PruneMode::cook; break;
     case GLFW_KEY_3: s.settings.prune_mode = PruneMode::opt; break;
     case GLFW_KEY_O: s.settings.occlusion = !s.settings.occlusion; break;
+    case GLFW_KEY_J: s.settings.shadows = !s.settings.shadows; break;
     case GLFW_KEY_L: s.settings.lambda_view = !s.settings.lambda_view; break;
     case GLFW_KEY_Y:
       s.settings.pyramid_overlay = !s.settings.pyramid_overlay;
@@ -137,6 +138,8 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
              f.wireframe ? "on" : "off"),
       format("[O] occlusion %s (%u culled)  [P] path %s", f.occlusion ? "on" : "off", st.occluded_instances,
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),
+      format("[J] shadows %s (GPU %.2f ms, casters %u %u %u)", f.shadows ? "on" : "off", st.shadow_ms,
+             st.shadow_casters[0], st.shadow_casters[1], st.shadow_casters[2]),
       format("%.0f %.0f %.0f  %.1f m/s  [C] shot", cam.position.x, cam.position.y, cam.position.z, cam.speed),
   };
   if (f.lod_camera) lines.push_back("[K] LOD frozen");
@@ -432,6 +435,7 @@ int run_walk(const WalkArgs& args) {
   vk::ContextOptions options = window_context_options(args, win.window);
   WalkState state;
   state.settings = scene_frame_settings(desc);
+  if (args.shadows) state.settings.shadows = *args.shadows;
   state.hud = !args.no_hud;
   listen_to_window(win.window, state);
 

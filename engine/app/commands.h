@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "engine/tools/bake/pr_bake.h"
 
 namespace forest::app {
@@ -105,6 +107,9 @@ struct RenderArgs {
   std::string device;
   std::optional<uint32_t> width, height;
   std::optional<bool> occlusion;  // --occlusion on|off, overrides [render].occlusion
+  std::optional<bool> shadows;    // --shadows on|off, overrides [render].shadows
+  std::optional<glm::vec2> sun;   // --sun AZIMUTH,ELEVATION (degrees), overrides [sky].sun_direction
+  std::optional<float> exposure;  // --exposure, overrides [render].exposure
   std::string mode;               // --mode full|cook|opt, overrides [render].mode
   std::string view;               // --view shaded|lambda|mask, overrides [render].view
   std::string overlay;            // --overlay pyramid: the depth pyramid in the top-right quarter
@@ -139,6 +144,7 @@ struct WalkArgs {
   bool no_hud = false;
   bool validate = false;
   std::string present = "auto";  // auto | blit | pass (the copy pass, where blits are unsupported)
+  std::optional<bool> shadows;   // --shadows on|off, overrides [render].shadows ([J] toggles)
 };
 int run_walk(const WalkArgs& args);
 
@@ -150,6 +156,7 @@ struct BenchArgs {
   uint32_t every = 1;               // play every k-th frame of the path
   uint32_t pr_every = 10;           // P, R, Q at every k-th played frame (0: never)
   std::optional<uint32_t> occlusion_warmup;  // frames drawn before each played one (default: all between)
+  std::string shadows;              // on | off | on,off: every mode with each (default: [render].shadows)
   uint32_t probe_instances = 64;    // throughput probe: sheets of 96 × 96 quads (0: no probe)
   std::optional<uint32_t> width, height;
   std::string out;                  // existing folder

@@ -146,6 +146,8 @@ Command add_render(CLI::App& cli) {
   struct Parsed {
     app::RenderArgs args;
     std::string occlusion;  // on | off, into args.occlusion
+    std::string shadows;    // on | off, into args.shadows
+    std::vector<float> sun;  // azimuth, elevation
   };
   auto p = std::make_shared<Parsed>();
   app::RenderArgs& a = p->args;
@@ -157,6 +159,12 @@ Command add_render(CLI::App& cli) {
   auto* occlusion_opt = cmd->add_option("--occlusion", p->occlusion,
                                         "Depth-buffer occlusion feedback (overrides [render].occlusion)")
                             ->check(CLI::IsMember({"on", "off"}));
+  auto* shadows_opt = cmd->add_option("--shadows", p->shadows, "Sun shadows, cascaded shadow maps (overrides [render].shadows)")
+                          ->check(CLI::IsMember({"on", "off"}));
+  auto* sun_opt = cmd->add_option("--sun", p->sun, "AZIMUTH,ELEVATION of the sun in degrees (azimuth from +x toward +z; overrides [sky].sun_direction)")
+                      ->delimiter(',')->expected(2)->check(CLI::Range(-360.0, 360.0));
+  cmd->add_option("--exposure", a.exposure, "Scene-linear multiplier before the tone map (overrides [render].exposure)")
+      ->check(CLI::Range(1e-3, 1e3));
   cmd->add_option("--mode", a.mode, "Prune mode (overrides [render].mode)")
       ->check(CLI::IsMember(std::vector<std::string>(prune_mode_names().begin(), prune_mode_names().end())));
   cmd->add_option("--view", a.view, "shaded, lambda (trees by detail level) or mask (coverage for forest compare)")
@@ -170,8 +178,10 @@ Command add_render(CLI::App& cli) {
   frame_opt->excludes(time_opt);
   cmd->add_option("--cache", a.cache, kCacheHelp);
   cmd->add_flag("--validate", a.validate, kValidateHelp);
-  return {cmd, [p, occlusion_opt] {
+  return {cmd, [p, occlusion_opt, shadows_opt, sun_opt] {
             if (*occlusion_opt) p->args.occlusion = p->occlusion == "on";
+            if (*shadows_opt) p->args.shadows = p->shadows == "on";
+            if (*sun_opt) p->args.sun = glm::vec2(p->sun[0], p->sun[1]);
             return app::run_render(p->args);
           }};
 }
@@ -188,8 +198,12 @@ Command add_compare(CLI::App& cli) {
 }
 
 Command add_walk(CLI::App& cli) {
-  auto args = std::make_shared<app::WalkArgs>();
-  app::WalkArgs& a = *args;
+  struct Parsed {
+    app::WalkArgs args;
+    std::string shadows;  // on | off, into args.shadows
+  };
+  auto p = std::make_shared<Parsed>();
+  app::WalkArgs& a = p->args;
   auto* cmd = cli.add_subcommand("walk", "Walk through a scene in a window (fly camera, HUD, prune modes)");
   cmd->add_option("scene", a.scene, "Scene file (TOML)")->required();
   cmd->add_option("--device", a.device, kDeviceHelp);
@@ -202,8 +216,13 @@ Command add_walk(CLI::App& cli) {
   cmd->add_flag("--no-hud", a.no_hud, "Start with the HUD hidden ([H] toggles)");
   cmd->add_option("--present", a.present, "Copy to the window by blit, or by a shader pass (auto: blit where supported)")
       ->check(CLI::IsMember({"auto", "blit", "pass"}));
+  auto* shadows_opt = cmd->add_option("--shadows", p->shadows, "Sun shadows (overrides [render].shadows; [J] toggles)")
+                          ->check(CLI::IsMember({"on", "off"}));
   cmd->add_flag("--validate", a.validate, kValidateHelp);
-  return command(cmd, args, app::run_walk);
+  return {cmd, [p, shadows_opt] {
+            if (*shadows_opt) p->args.shadows = p->shadows == "on";
+            return app::run_walk(p->args);
+          }};
 }
 
 Command add_bench(CLI::App& cli) {
@@ -220,6 +239,8 @@ Command add_bench(CLI::App& cli) {
   cmd->add_option("--occlusion-warmup", a.occlusion_warmup,
                   "Occlusion modes: path frames drawn (unrecorded) before each played one (default: all in between)")
       ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--shadows", a.shadows, "Sun shadows: on, off, or on,off (every mode played with each; default: [render].shadows)")
+      ->check(CLI::IsMember({"on", "off", "on,off", "off,on"}));
   add_size_options(cmd, a.width, a.height);
   cmd->add_option("--probe-instances", a.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0u, kMaxProbeInstances));
   cmd->add_option("--out", a.out, "Output folder (must exist)")->required();

@@ -1,5 +1,6 @@
 #include "engine/render/draw_pass.h"
 
+#include "engine/render/shadow_pass.h"
 #include "engine/vk/pipelines.h"
 
 namespace forest {
@@ -144,19 +145,25 @@ void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayou
   VkDeviceSize zero = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &scene.vertices.buffer, &zero);
   vkCmdBindIndexBuffer(cmd, scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+  const uint32_t n = cull.instance_count, stride = sizeof(gpu::DrawCommand);
+  auto push = [&](uint32_t command_base) {
+    gpu::DrawPush dp{command_base, SHADOW_NONE};
+    vkCmdPushConstants(cmd, layout, kDrawPushRange.stageFlags, kDrawPushRange.offset, sizeof(dp), &dp);
+  };
+  push(0);
   if (list.background) {  // the sky is filled in the wireframe view too
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.fill.sky);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.terrain);
     vkCmdDrawIndexed(cmd, scene.terrain_index_count, 1, 0, 0, 0);
   }
-  const uint32_t n = cull.instance_count, stride = sizeof(gpu::DrawCommand);
   if (n > 0 && list.branches) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.branches);
     vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, 0, cull.counts.buffer,
                                   offsetof(gpu::DrawCounts, branch_draws), n, stride);
   }
   if (n > 0 && list.leaves) {  // up to two leaf draws per tree: the prefix and the occlusion tail
+    push(n);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.leaves);
     vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(n) * stride, cull.counts.buffer,
                                   offsetof(gpu::DrawCounts, leaf_draws), 2 * n, stride);

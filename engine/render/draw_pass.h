@@ -38,6 +38,7 @@ struct DrawList {
   bool leaves = true;
   bool wireframe = false;   // the wire pipelines (must exist)
   bool keep_depth = false;  // store the depth (or its resolve) for the depth pyramid
+  bool shadows = false;     // the shadow pass runs first (shadow_pass.h); never in coverage frames
 };
 
 // Records the draw (set 0 bound to the graphics bind point by the caller). Before: the cull

@@ -13,11 +13,34 @@ namespace forest {
 namespace {
 
 // Timestamps of one frame: start, cull end, draw end, frame end, pyramid start / end.
-enum Timestamp : uint32_t { kFrameStart, kCullEnd, kDrawEnd, kFrameEnd, kPyramidStart, kPyramidEnd, kTimestampCount };
+enum Timestamp : uint32_t {
+  kFrameStart, kCullEnd, kDrawEnd, kFrameEnd, kPyramidStart, kPyramidEnd, kShadowStart, kShadowEnd, kTimestampCount
+};
 // A camera that moves or turns this much between two frames is a cut: the previous frame's
 // depth says nothing about the new view, so occlusion treats every tree as visible.
 constexpr float kCutDistance = 2.0f;  // meters
 constexpr float kCutAngleDeg = 10.0f;
+
+// Everything that may cast a shadow: the terrain square and the trees' spheres.
+ShadowBounds scene_shadow_bounds(const Scene& scene) {
+  const Terrain& t = scene.terrain;
+  float half = t.desc.size * 0.5f;
+  float lo = 0.0f, hi = 0.0f;
+  if (!t.heights.empty()) {
+    lo = *std::min_element(t.heights.begin(), t.heights.end());
+    hi = *std::max_element(t.heights.begin(), t.heights.end());
+  }
+  ShadowBounds b{{-half, lo, -half}, {half, hi, half}};
+  for (const gpu::Instance& inst : scene.instances) {
+    const TreeModel& m = scene.models[inst.model];
+    glm::vec3 p(inst.position_scale);
+    float r = glm::length(glm::vec3(m.bounding_sphere)) + m.bounding_sphere.w;
+    r *= inst.position_scale.w;
+    b.min = glm::min(b.min, p - glm::vec3(r));
+    b.max = glm::max(b.max, p + glm::vec3(r));
+  }
+  return b;
+}
 
 }  // namespace
 
@@ -26,13 +49,16 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   targets_ = create_render_targets(ctx, {width, height}, samples);
   buffers_ = upload_scene(ctx, scene);
   descriptors_ = create_descriptor_table(ctx, kRendererBindingLists, kFramesInFlight);
-  layout_ = vk::create_pipeline_layout(ctx, descriptors_.layout, kPrCountPushRange);
+  const VkPushConstantRange push_ranges[] = {kPrCountPushRange, kDrawPushRange};
+  layout_ = vk::create_pipeline_layout(ctx, descriptors_.layout, push_ranges);
 
   cull_ = create_cull_pass(ctx, layout_, buffers_.instance_count);
   tail_cull_ = create_tail_cull_pass(ctx, layout_, buffers_.instance_count, buffers_.instance_leaves);
   draw_ = create_draw_pass(ctx, layout_, targets_.samples);
   pr_count_ = create_pr_count_pass(ctx, layout_, targets_.extent);
   pyramid_overlay_ = create_pyramid_overlay_pass(ctx, layout_);
+  shadow_ = create_shadow_pass(ctx, layout_, buffers_.instance_count, scene.desc.shadow_resolution);
+  shadow_bounds_ = scene_shadow_bounds(scene);
   pyramid_ = create_depth_pyramid(ctx, targets_.pyramid_source().view, targets_.extent, true);
   image_readback_ = vk::create_buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                       vk::MemoryUse::readback);
@@ -68,6 +94,7 @@ void Renderer::write_descriptors() {
     write_cull_bindings(w, cull_);
     write_tail_cull_bindings(w, tail_cull_);
     write_pr_count_bindings(w, pr_count_);
+    write_shadow_bindings(w, shadow_);
     w.image(BINDING_DEPTH_PYRAMID, pyramid_.point_sampler, pyramid_.image.view, VK_IMAGE_LAYOUT_GENERAL);
     w.apply(ctx_, descriptors_, s.set, true);
   }
@@ -87,6 +114,7 @@ Renderer::~Renderer() {
   vk::destroy_buffer(ctx_, image_readback_);
   destroy_depth_pyramid(ctx_, pyramid_);
   destroy_pyramid_overlay_pass(ctx_, pyramid_overlay_);
+  destroy_shadow_pass(ctx_, shadow_);
   destroy_pr_count_pass(ctx_, pr_count_);
   destroy_draw_pass(ctx_, draw_);
   destroy_tail_cull_pass(ctx_, tail_cull_);
@@ -138,6 +166,12 @@ void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const Dr
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &slot.set, 0, nullptr);
   if (timed) begin_gpu_stats(cmd, slot.pipeline_stats, StatsPass::cull);
   record_cull_pass(cmd, cull_);
+  if (list.shadows) {  // other counters and commands than cull.comp's, but the same buffers
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    record_shadow_cull(cmd, shadow_);
+  }
   if (occlusion) record_tail_cull_pass(cmd, tail_cull_, cull_);
   if (timed) end_gpu_stats(cmd, slot.pipeline_stats, StatsPass::cull);
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -146,6 +180,9 @@ void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const Dr
                      VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                          VK_ACCESS_2_TRANSFER_READ_BIT);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, slot.timestamps, kCullEnd);
+  if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowStart);
+  if (list.shadows) record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_);
+  if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowEnd);
   if (timed) begin_gpu_stats(cmd, slot.pipeline_stats, StatsPass::draw);
   record_draw_pass(cmd, draw_, layout_, slot.set, buffers_, cull_, targets_, list);
   if (timed) end_gpu_stats(cmd, slot.pipeline_stats, StatsPass::draw);
@@ -208,6 +245,7 @@ FrameSettings scene_frame_settings(const SceneDesc& desc) {
   s.lambda_view = desc.lambda_view;
   s.mask = desc.mask_view;
   s.occlusion = desc.occlusion;
+  s.shadows = desc.shadows;
   return s;
 }
 
@@ -291,7 +329,23 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
   fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition, settings.fixed_lambda, settings.fixed_scale);
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
   fd.prune_mode = uint32_t(settings.prune_mode);
-  fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u);
+  fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u) |
+                  (settings.shadow_view ? VIEW_SHADOW : 0u);
+  fd.camera_forward = glm::vec4(cm.forward, 0.0f);
+  fd.light = glm::vec4(scene_.desc.exposure, 0.0f, 0.0f, 0.0f);
+  if (settings.shadows && !settings.mask) {
+    ShadowCascades sc = compute_shadow_cascades(camera, float(width_) / float(height_), sky.sun_direction,
+                                                scene_.desc.shadow_distance, shadow_.resolution, shadow_bounds_);
+    fd.shadows = 1;
+    for (uint32_t c = 0; c < SHADOW_CASCADES; ++c) {
+      fd.shadow_view_proj[c] = sc.cascades[c].view_proj;
+      for (uint32_t p = 0; p < 6; ++p) fd.shadow_planes[c * 6 + p] = sc.cascades[c].planes[p];
+      fd.shadow_splits[int(c)] = sc.cascades[c].split_far;
+      fd.shadow_texel[int(c)] = sc.cascades[c].texel;
+    }
+    fd.shadow_splits.w = sc.distance;
+    fd.shadow_texel.w = float(shadow_.resolution);
+  }
   fd.instance_count = buffers_.instance_count;
   fd.leaf_command_base = buffers_.instance_count;
   fd.tail_capacity = tail_cull_.capacity;
@@ -339,6 +393,7 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   list.branches = settings.branches;
   list.wireframe = settings.wireframe && has_wireframe() && !settings.mask;
   list.keep_depth = settings.occlusion;
+  list.shadows = settings.shadows && !settings.mask;
   // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.
   const bool overlay = settings.pyramid_overlay && settings.occlusion && !settings.mask && pyramid_valid_;
   record_frame(slot, output, list, settings.occlusion, overlay);
@@ -374,6 +429,12 @@ FrameStats Renderer::read_stats(FrameSlot& slot) {
   stats.draw_ms = double(ts[kDrawEnd] - ts[kCullEnd]) * period_ms;
   stats.frame_ms = double(ts[kFrameEnd] - ts[kFrameStart]) * period_ms;
   stats.pyramid_ms = double(ts[kPyramidEnd] - ts[kPyramidStart]) * period_ms;
+  stats.shadow_ms = double(ts[kShadowEnd] - ts[kShadowStart]) * period_ms;
+  for (int c = 0; c < SHADOW_CASCADES; ++c) {
+    stats.shadow_casters[c] = counts.shadow_branch_draws[c];
+    stats.shadow_triangles[c] = counts.shadow_triangles[c];
+    stats.shadow_leaves[c] = counts.shadow_leaves[c];
+  }
   stats.cull_pipeline = read_gpu_stats(ctx_, slot.pipeline_stats, StatsPass::cull);
   stats.draw_pipeline = read_gpu_stats(ctx_, slot.pipeline_stats, StatsPass::draw);
   return stats;

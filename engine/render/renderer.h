@@ -19,6 +19,8 @@
 #include "engine/render/pyramid_overlay_pass.h"
 #include "engine/render/render_targets.h"
 #include "engine/render/scene_buffers.h"
+#include "engine/render/shadow_cascades.h"
+#include "engine/render/shadow_pass.h"
 #include "engine/render/tail_cull_pass.h"
 #include "engine/scene/camera.h"
 #include "engine/scene/scene.h"
@@ -55,6 +57,11 @@ struct FrameSettings {
   // Debug overlay: the depth pyramid the occlusion test reads, in the top-right quarter
   // (pyramid_overlay_pass.h). Drawn only with occlusion on; never in coverage (mask) frames.
   bool pyramid_overlay = false;
+  // The sun's cascaded shadow maps ([render] shadows, --shadows). Coverage (mask) frames never
+  // draw them: PR measurements do not depend on light.
+  bool shadows = false;
+  // Shows the shadow map's sun visibility as grey on terrain and trees (tests, debugging).
+  bool shadow_view = false;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -71,6 +78,10 @@ struct FrameStats {
   uint32_t triangles_saved = 0;     // by occlusion: leaf + branch triangles
   bool camera_cut = false;          // occlusion treated every tree as visible this frame
   double pyramid_ms = 0.0;          // GPU time of the depth pyramid (0 without occlusion)
+  double shadow_ms = 0.0;           // GPU time of the shadow pass (cull + cascades; 0 without shadows)
+  uint32_t shadow_casters[SHADOW_CASCADES] = {};    // trees drawn into each cascade
+  uint32_t shadow_triangles[SHADOW_CASCADES] = {};  // bark + leaf triangles drawn into each cascade
+  uint32_t shadow_leaves[SHADOW_CASCADES] = {};
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;
   double frame_ms = 0.0;
@@ -102,7 +113,7 @@ struct CoverageJob {
 // Set 0 of every renderer pipeline: the union of the bindings its passes declare.
 inline constexpr std::span<const Binding> kRendererBindingLists[] = {kSceneBindings, kCullBindings, kTailCullBindings,
                                                                      kDrawBindings, kPrCountBindings,
-                                                                     kPyramidOverlayBindings};
+                                                                     kPyramidOverlayBindings, kShadowBindings};
 
 class Renderer {
  public:
@@ -203,6 +214,8 @@ class Renderer {
   DrawPass draw_;
   PrCountPass pr_count_;
   PyramidOverlayPass pyramid_overlay_;
+  ShadowPass shadow_;
+  ShadowBounds shadow_bounds_;  // what may cast: terrain and trees
   DepthPyramid pyramid_;
   FrameSlot slots_[kFramesInFlight];
   uint32_t frame_count_ = 0;  // frames submitted; slots_[frame_count_ % kFramesInFlight] is next

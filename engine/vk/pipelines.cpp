@@ -32,12 +32,12 @@ VkShaderModule create_shader(Context& ctx, std::string_view name) {
   return module;
 }
 
-VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, const VkPushConstantRange& push) {
+VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, std::span<const VkPushConstantRange> push) {
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   plci.setLayoutCount = 1;
   plci.pSetLayouts = &set;
-  plci.pushConstantRangeCount = 1;
-  plci.pPushConstantRanges = &push;
+  plci.pushConstantRangeCount = uint32_t(push.size());
+  plci.pPushConstantRanges = push.data();
   VkPipelineLayout layout;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &plci, nullptr, &layout));
   return layout;
@@ -45,7 +45,7 @@ VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set,
 
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc) {
   VkShaderModule vs = create_shader(ctx, desc.vertex);
-  VkShaderModule fs = create_shader(ctx, desc.fragment);
+  VkShaderModule fs = desc.fragment.empty() ? VK_NULL_HANDLE : create_shader(ctx, desc.fragment);
   std::vector<VkSpecializationMapEntry> entries;
   std::vector<uint32_t> values;
   for (const SpecConstant& c : desc.fragment_specialization) {
@@ -78,18 +78,22 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   raster.cullMode = desc.cull;
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
+  raster.depthBiasEnable = desc.depth_bias_constant != 0.0f || desc.depth_bias_slope != 0.0f;
+  raster.depthBiasConstantFactor = desc.depth_bias_constant;
+  raster.depthBiasSlopeFactor = desc.depth_bias_slope;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = desc.samples;
   multisample.alphaToCoverageEnable = desc.alpha_to_coverage && desc.samples > VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = desc.depth_test;
   depth.depthWriteEnable = desc.depth_write;
-  depth.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z: 1 near, 0 far
+  depth.depthCompareOp = desc.depth_compare;
   VkPipelineColorBlendAttachmentState blend_attachment{};
   blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                                     (desc.write_alpha ? VkColorComponentFlags(VK_COLOR_COMPONENT_A_BIT) : 0u);
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = 1;
+  const bool color = desc.color_format != VK_FORMAT_UNDEFINED;
+  blend.attachmentCount = color ? 1 : 0;
   blend.pAttachments = &blend_attachment;
   VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
@@ -97,12 +101,12 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   dynamic.pDynamicStates = dynamic_states;
 
   VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  rendering.colorAttachmentCount = 1;
+  rendering.colorAttachmentCount = color ? 1 : 0;
   rendering.pColorAttachmentFormats = &desc.color_format;
   rendering.depthAttachmentFormat = desc.depth_format;
 
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-  ci.stageCount = 2;
+  ci.stageCount = fs ? 2 : 1;
   ci.pStages = stages;
   ci.pVertexInputState = &vertex_input;
   ci.pInputAssemblyState = &assembly;
@@ -116,7 +120,7 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   VkPipeline pipeline;
   VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
   vkDestroyShaderModule(ctx.device, vs, nullptr);
-  vkDestroyShaderModule(ctx.device, fs, nullptr);
+  if (fs) vkDestroyShaderModule(ctx.device, fs, nullptr);
   return pipeline;
 }
 

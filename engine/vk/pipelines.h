@@ -26,7 +26,7 @@ struct SpecConstant {
 
 struct GraphicsPipelineDesc {
   std::string_view vertex;    // shader registry names
-  std::string_view fragment;
+  std::string_view fragment;  // empty: no fragment stage (depth-only passes)
   bool vertex_input = true;   // forest::Vertex (position, normal, uv) at binding 0
   VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
   bool depth_test = true;
@@ -39,12 +39,18 @@ struct GraphicsPipelineDesc {
   // drives alpha-to-coverage, which the write mask does not affect).
   bool write_alpha = true;
   VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;  // LINE needs Context::fill_mode_non_solid
+  VkCompareOp depth_compare = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z: 1 near, 0 far
+  // Depth bias (shadow maps): constant in units of the format's resolution, and per unit slope.
+  float depth_bias_constant = 0.0f, depth_bias_slope = 0.0f;
   // Fragment-stage specialization constants (shader variants), e.g. {{SPEC_LEAF, 1u}}.
   std::vector<SpecConstant> fragment_specialization;
 };
 
-// A pipeline layout of one descriptor set and one push-constant range.
-VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, const VkPushConstantRange& push);
+// A pipeline layout of one descriptor set and its push-constant ranges.
+VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, std::span<const VkPushConstantRange> push);
+inline VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, const VkPushConstantRange& push) {
+  return create_pipeline_layout(ctx, set, std::span<const VkPushConstantRange>(&push, 1));
+}
 
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc);
 VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader);

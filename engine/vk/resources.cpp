@@ -119,6 +119,23 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
   return create_image_2d(ctx, extent, format, usage, aspect, samples, 1, 1, VK_IMAGE_VIEW_TYPE_2D);
 }
 
+Image create_image_array(Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                         VkImageAspectFlags aspect) {
+  return create_image_2d(ctx, extent, format, usage, aspect, VK_SAMPLE_COUNT_1_BIT, 1, layers,
+                         VK_IMAGE_VIEW_TYPE_2D_ARRAY);
+}
+
+VkImageView create_layer_view(Context& ctx, const Image& image, VkImageAspectFlags aspect, uint32_t layer) {
+  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vci.image = image.image;
+  vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vci.format = image.format;
+  vci.subresourceRange = {aspect, 0, 1, layer, 1};
+  VkImageView view;
+  VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &view));
+  return view;
+}
+
 Image create_mipmapped_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                              VkImageAspectFlags aspect, uint32_t mips) {
   return create_image_2d(ctx, extent, format, usage, aspect, VK_SAMPLE_COUNT_1_BIT, mips, 1, VK_IMAGE_VIEW_TYPE_2D);

@@ -41,6 +41,11 @@ Image create_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsag
 // Single-sample, `mips` levels; the view covers every level.
 Image create_mipmapped_image(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                              VkImageAspectFlags aspect, uint32_t mips);
+// Single-sample, one mip, `layers` layers; the view is a 2D array over all of them.
+Image create_image_array(Context& ctx, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                         VkImageAspectFlags aspect);
+// A 2D view of one layer (an attachment of a layered image); the caller destroys it.
+VkImageView create_layer_view(Context& ctx, const Image& image, VkImageAspectFlags aspect, uint32_t layer);
 void destroy_image(Context& ctx, Image& image);
 
 // A sampled 2D array texture (square, all mips), filled from `texels`: layer-major, each

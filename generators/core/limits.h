@@ -24,6 +24,7 @@ inline constexpr uint32_t kMaxSceneSpecies = 256;  // leaf texture array layers 
 // Frames ([render] width/height, --width/--height) and images read from files.
 inline constexpr uint32_t kMinFrameSide = 16;
 inline constexpr uint32_t kMaxFrameSide = 8192;
+inline constexpr uint32_t kMaxShadowResolution = 4096;  // texels per side of one shadow cascade
 inline constexpr int kMaxImageSide = 8192;       // input masks and heightmaps, per side
 inline constexpr int kMaxGlbImageSide = 4096;    // a texture inside a .glb, per side
 inline constexpr uint32_t kMinBakeResolution = 32;    // pixels of a PR coverage render or preview view

@@ -62,6 +62,9 @@ class BarkAppearance : public ValidatedGpuTest {
     desc.camera.target = {0.0f, 3.0f, 0.0f};
     desc.camera.fov_deg = 40.0f;
     desc.sky.sun_direction = glm::normalize(sun);
+    // A white tube in full sun: a lower exposure keeps it off the tone map's shoulder, where
+    // brighter and darker both come out near white.
+    desc.exposure = 0.4f;
     desc.trees = {TreeDesc{}};
     Scene s = scene_of(std::move(desc), {model});
     Renderer renderer(ctx_, s, 96, 96, 1);

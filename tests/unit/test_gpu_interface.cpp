@@ -97,7 +97,9 @@ const std::vector<StructDecl>& shared_structs() {
       GPU_STRUCT_DECL(FrameData, M(view_proj), M(inv_view_proj), M(camera_pos), M(sun_dir), M(sky_zenith),
                       M(sky_horizon), M(fog), M(frustum), M(lod), M(prune), M(lod_camera), M(prev_view_proj),
                       M(prev_camera), M(pyramid), M(instance_count), M(leaf_command_base), M(prune_mode),
-                      M(view_flags), M(occlusion), M(tail_capacity), M(tail_job_capacity), M(pad2)),
+                      M(view_flags), M(occlusion), M(tail_capacity), M(tail_job_capacity), M(shadows),
+                      M(shadow_view_proj), M(shadow_planes), M(shadow_splits), M(shadow_texel), M(camera_forward),
+                      M(light)),
       GPU_STRUCT_DECL(Instance, M(position_scale), M(yaw_cos_sin), M(model), M(tint)),
       GPU_STRUCT_DECL(Model, M(bounding_sphere), M(bark_color), M(leaf_color), M(lod_first_index),
                       M(lod_index_count), M(lod_vertex_offset), M(lod_error), M(lod_count), M(leaf_texture_layer),
@@ -112,11 +114,13 @@ const std::vector<StructDecl>& shared_structs() {
                       M(first_instance), M(instance), M(lambda), M(area_scale), M(shown_lambda), M(leaf_list)),
       GPU_STRUCT_DECL(DrawCounts, M(branch_draws), M(leaf_draws), M(leaves_drawn), M(branch_triangles),
                       M(lod_draws), M(lambda_sum), M(occluded_instances), M(leaves_saved), M(triangles_saved),
-                      M(tail_jobs), M(tail_groups_y), M(tail_groups_z), M(tail_leaves)),
+                      M(tail_jobs), M(tail_groups_y), M(tail_groups_z), M(tail_leaves), M(shadow_branch_draws),
+                      M(shadow_leaf_draws), M(shadow_triangles), M(shadow_leaves)),
       GPU_STRUCT_DECL(PrCounts, M(tp), M(fp), M(fn), M(pad)),
       GPU_STRUCT_DECL(PrCountPush, M(pixel_count), M(reference_offset), M(branch_offset), M(result)),
       GPU_STRUCT_DECL(DepthPyramidPush, M(source_size), M(destination_size), M(first_level), M(pad)),
       GPU_STRUCT_DECL(PresentPush, M(offset), M(size)),
+      GPU_STRUCT_DECL(DrawPush, M(command_base), M(cascade)),
   };
   return structs;
 }
@@ -130,11 +134,14 @@ const StructDecl* find_struct(const std::string& name) {
 }
 
 // The three pipeline layouts and the shaders that use each.
+struct PushDecl {
+  VkPushConstantRange range;
+  const char* push_struct;
+};
 struct LayoutDecl {
   const char* name;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
-  VkPushConstantRange push;
-  const char* push_struct;
+  std::vector<PushDecl> pushes;  // non-overlapping ranges, one struct each
 };
 
 // The renderer's set 0: the union of what its passes declare (as engine/render/renderer.cpp
@@ -147,11 +154,10 @@ std::vector<VkDescriptorSetLayoutBinding> renderer_set() {
 
 const std::vector<LayoutDecl>& layouts() {
   static const std::vector<LayoutDecl> all = {
-      {"renderer", renderer_set(), kPrCountPushRange, "PrCountPush"},
-      {"depth pyramid", {std::begin(kPyramidSetBindings), std::end(kPyramidSetBindings)}, kPyramidPushRange,
-       "DepthPyramidPush"},
-      {"present", {std::begin(kPresentSetBindings), std::end(kPresentSetBindings)}, kPresentPushRange,
-       "PresentPush"},
+      {"renderer", renderer_set(), {{kPrCountPushRange, "PrCountPush"}, {kDrawPushRange, "DrawPush"}}},
+      {"depth pyramid", {std::begin(kPyramidSetBindings), std::end(kPyramidSetBindings)},
+       {{kPyramidPushRange, "DepthPyramidPush"}}},
+      {"present", {std::begin(kPresentSetBindings), std::end(kPresentSetBindings)}, {{kPresentPushRange, "PresentPush"}}},
   };
   return all;
 }
@@ -476,7 +482,7 @@ TEST(GpuInterface, BindingsMatchTheSetLayouts) {
 
 TEST(GpuInterface, PushConstantsMatchThePipelineLayouts) {
   ASSERT_FALSE(shaders().empty());
-  std::map<const LayoutDecl*, int> pushed;
+  std::map<const PushDecl*, int> pushed;
   for (const Shader& s : shaders()) {
     if (!s.reflection.contains("push_constants")) continue;
     const LayoutDecl& layout = layout_of(s.name);
@@ -484,30 +490,40 @@ TEST(GpuInterface, PushConstantsMatchThePipelineLayouts) {
     for (const json& r : s.reflection["push_constants"]) {
       const json& block = types[r["type"].get<std::string>()];
       const size_t size = extent(types, block);
-      EXPECT_LE(size, layout.push.offset + layout.push.size)
-          << s.name << ": push-constant block " << block.value("name", "") << " is " << size << " bytes, the C++ "
-          << layout.name << " layout's range " << layout.push.size;
-      EXPECT_TRUE(layout.push.stageFlags & s.stage) << s.name << ": the C++ " << layout.name
-                                                    << " push-constant range is not visible to this stage";
-      // The block wraps the one struct of gpu_types.h the C++ side pushes.
+      // The block wraps the one struct of gpu_types.h the C++ side pushes to this stage.
       ASSERT_EQ(block["members"].size(), 1u) << s.name << ": push-constant block " << block.value("name", "")
-                                             << " must hold one struct of gpu_types.h (" << layout.push_struct << ")";
+                                             << " must hold one struct of gpu_types.h";
+      const PushDecl* push = nullptr;
+      for (const PushDecl& p : layout.pushes)
+        if (p.range.stageFlags & s.stage) push = &p;
+      ASSERT_NE(push, nullptr) << s.name << ": no push-constant range of the C++ " << layout.name
+                               << " layout is visible to this stage";
       const std::string wrapped = type_name(types, block["members"][0]["type"]);
-      EXPECT_EQ(wrapped, layout.push_struct) << s.name << ": push-constant block " << block.value("name", "")
-                                             << " holds " << wrapped << ", the C++ " << layout.name
-                                             << " layout pushes " << layout.push_struct;
-      const StructDecl* decl = find_struct(layout.push_struct);
+      EXPECT_EQ(wrapped, push->push_struct) << s.name << ": push-constant block " << block.value("name", "")
+                                            << " holds " << wrapped << ", the C++ " << layout.name
+                                            << " layout pushes " << push->push_struct;
+      const StructDecl* decl = find_struct(push->push_struct);
       ASSERT_NE(decl, nullptr);
-      EXPECT_EQ(size_t(layout.push.size), decl->size) << layout.name << ": push range size vs sizeof "
-                                                      << layout.push_struct;
-      EXPECT_EQ(size, decl->size) << s.name << ": push-constant block is " << size << " bytes, sizeof "
-                                  << layout.push_struct << " " << decl->size;
-      ++pushed[&layout];
+      EXPECT_EQ(size_t(push->range.size), decl->size) << layout.name << ": push range size vs sizeof "
+                                                      << push->push_struct;
+      const size_t offset = block["members"][0].value("offset", 0);
+      EXPECT_EQ(offset, size_t(push->range.offset)) << s.name << ": push-constant block starts at byte " << offset
+                                                    << ", the C++ range at " << push->range.offset;
+      EXPECT_EQ(size, push->range.offset + decl->size)
+          << s.name << ": push-constant block ends at byte " << size << ", the C++ range at "
+          << push->range.offset + decl->size;
+      ++pushed[push];
     }
   }
   for (const LayoutDecl& layout : layouts())
-    EXPECT_GT(pushed[&layout], 0) << "the C++ " << layout.name << " layout's push constants (" << layout.push_struct
-                                  << ") are read by no compiled shader";
+    for (const PushDecl& p : layout.pushes) {
+      EXPECT_GT(pushed[&p], 0) << "the C++ " << layout.name << " layout's push constants (" << p.push_struct
+                               << ") are read by no compiled shader";
+      for (const PushDecl& q : layout.pushes)
+        if (&p != &q)
+          EXPECT_TRUE(p.range.offset + p.range.size <= q.range.offset || q.range.offset + q.range.size <= p.range.offset)
+              << layout.name << ": push ranges " << p.push_struct << " and " << q.push_struct << " overlap";
+    }
 }
 
 TEST(GpuInterface, SpecializationConstantIdsMatchSpecMacros) {

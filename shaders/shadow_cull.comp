@@ -1,0 +1,48 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Shadow casters: one thread per tree instance, for every cascade of the sun's shadow map
+// whose caster volume the tree's sphere touches, append the tree's indirect draws (bark and
+// leaf prefix) to that cascade's command range. λ and s are those of the camera's mode
+// (tree_detail.glsl), so a pruned tree casts its pruned shadow; occlusion plays no part (a
+// tree hidden from the camera still casts), nor does the camera frustum (a tree behind the
+// camera still shades what it sees). Branch LOD: the coarsest level whose error stays under
+// one texel of the cascade.
+#include "common.glsl"
+#include "tree_detail.glsl"
+
+layout(local_size_x = CULL_GROUP_SIZE) in;
+layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
+layout(set = 0, binding = BINDING_DRAW_COUNTS, std430) buffer Counts { DrawCounts counts; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= frame.instance_count) return;
+  Instance inst = instances[i];
+  Model m = models[inst.model];
+  float s = inst.position_scale.w;
+  vec3 center = inst.position_scale.xyz + rotate_yaw(m.bounding_sphere.xyz, inst.yaw_cos_sin) * s;
+  float radius = m.bounding_sphere.w * s;
+  float lambda, area_scale;
+  tree_detail(m, distance(center, frame.lod_camera.xyz), lambda, area_scale);
+  uint k = leaf_prefix(lambda, m.leaf_count);
+  for (uint c = 0; c < SHADOW_CASCADES; ++c) {
+    bool inside = true;
+    for (uint p = 0; p < 6; ++p)
+      if (dot(frame.shadow_planes[c * 6 + p].xyz, center) + frame.shadow_planes[c * 6 + p].w < -radius) inside = false;
+    if (!inside) continue;
+    uint lod = 0;
+    for (uint e = 1; e < m.lod_count; ++e)
+      if (m.lod_error[e] * s <= frame.shadow_texel[c]) lod = e;
+    uint base = shadow_command_base(c);
+    uint b = atomicAdd(counts.shadow_branch_draws[c], 1);
+    atomicAdd(counts.shadow_triangles[c], m.lod_index_count[lod] / 3 + k * (m.card_index_count / 3));
+    commands[base + b] = DrawCommand(m.lod_index_count[lod], 1, m.lod_first_index[lod], m.lod_vertex_offset[lod], 0, i,
+                                     lambda, area_scale, lambda, LEAF_LIST_DIRECT);
+    if (k > 0) {
+      uint l = atomicAdd(counts.shadow_leaf_draws[c], 1);
+      atomicAdd(counts.shadow_leaves[c], k);
+      commands[base + frame.instance_count + l] = DrawCommand(m.card_index_count, k, m.card_first_index,
+          m.card_vertex_offset, m.leaf_offset, i, lambda, area_scale, lambda, LEAF_LIST_DIRECT);
+    }
+  }
+}
