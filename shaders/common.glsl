@@ -31,9 +31,10 @@ vec3 sky_color(vec3 d) {
 }
 
 // Sun + sky hemisphere lighting of a diffuse surface, then aerial-perspective fog.
-vec3 shade(vec3 albedo, vec3 n, vec3 world, float ambient_occlusion, float translucency) {
+// sun_visibility: the fraction of the sun reaching the surface (crown self-shadowing; 1 = all).
+vec3 shade(vec3 albedo, vec3 n, vec3 world, float ambient_occlusion, float translucency, float sun_visibility) {
   vec3 l = frame.sun_dir.xyz;
-  float sun = max(dot(n, l), 0.0) + translucency * max(-dot(n, l), 0.0);
+  float sun = (max(dot(n, l), 0.0) + translucency * max(-dot(n, l), 0.0)) * sun_visibility;
   // Hemisphere ambient: sky from above, light bounced off the forest floor from below.
   vec3 sky = mix(vec3(0.20, 0.19, 0.13), mix(frame.sky_horizon.rgb, frame.sky_zenith.rgb, 0.5), n.y * 0.5 + 0.5);
   vec3 lit = albedo * (sun * frame.sun_dir.w * vec3(1.0, 0.95, 0.85) * 0.5 + sky * 0.6 * ambient_occlusion);

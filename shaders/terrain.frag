@@ -25,5 +25,5 @@ void main() {
   float patches = 0.6 * value_noise(in_world.xz * 0.08) + 0.4 * value_noise(in_world.xz * 0.5);
   albedo *= 0.75 + 0.5 * patches;
   albedo = mix(albedo, soil, 0.35 * smoothstep(0.55, 0.8, value_noise(in_world.xz * 0.03 + 17.0)));
-  out_color = vec4(shade(albedo, n, in_world, 1.0, 0.0), 1.0);
+  out_color = vec4(shade(albedo, n, in_world, 1.0, 0.0, 1.0), 1.0);
 }

@@ -19,6 +19,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_albedo;
 layout(location = 3) in vec2 in_ao_translucency;
 layout(location = 4) in vec3 in_uv_layer;
+layout(location = 5) in float in_sun_visibility;
 layout(location = 0) out vec4 out_color;
 
 // The normal n perturbed by tangent-space normal t (glTF convention: +X along +u, +Y along
@@ -68,5 +69,5 @@ void main() {
     albedo *= texture(bark_albedo, in_uv_layer).rgb;
     n = perturb_normal(n, in_world, in_uv_layer.xy, texture(bark_normals, in_uv_layer).xyz * 2.0 - 1.0);
   }
-  out_color = vec4(shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y), clamp(alpha, 0.0, 1.0));
+  out_color = vec4(shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y, in_sun_visibility), clamp(alpha, 0.0, 1.0));
 }
