@@ -68,7 +68,7 @@ void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
     const LeafPlacement& l = tm.leaves[i];
     glm::uvec4 depth(0u);
     if (crown) {
-      const CrownDepth& d = crown->depths[i];
+      const CrownCube& d = crown->depths[i];
       depth = glm::uvec4(glm::packHalf2x16({d[0], d[1]}), glm::packHalf2x16({d[2], d[3]}),
                          glm::packHalf2x16({d[4], d[5]}), 0u);
     }

@@ -36,9 +36,9 @@ struct PrPoint {
 // Crown self-shadowing (attach_crown_light, generators/bake/hull/hull_depth.h): per leaf the
 // depth below the hull along +x, −x, +y, −y, +z, −z (metres, model space), the ambient-cube
 // coefficients of D(ω) = Σ_i ω_i² · D[axis i, sign of ω_i]; and the foliage's extinction κ.
-using CrownDepth = std::array<float, 6>;
+using CrownCube = std::array<float, 6>;
 struct CrownLight {
-  std::vector<CrownDepth> depths;  // index-aligned with TreeModel::leaves (reorder_leaves keeps it so)
+  std::vector<CrownCube> depths;  // index-aligned with TreeModel::leaves (reorder_leaves keeps it so)
   float extinction = 0.0f;         // κ, 1/m: transmittance exp(−κ · depth)
 };
 

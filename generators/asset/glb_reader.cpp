@@ -257,7 +257,7 @@ struct Reader {
 
   // The baked crown depths (_CROWN_DEPTH_POS / _NEG, both or neither), one per leaf, each
   // finite and in [0, kMaxCrownDepthOnLoad]. nullopt when absent.
-  std::optional<std::vector<CrownDepth>> crown_depths(const tinygltf::Node& node, size_t leaf_count) const {
+  std::optional<std::vector<CrownCube>> crown_depths(const tinygltf::Node& node, size_t leaf_count) const {
     auto ext = node.extensions.find(kInstancing);
     if (ext == node.extensions.end()) return std::nullopt;
     const tinygltf::Value& attrs = ext->second.Get("attributes");
@@ -268,7 +268,7 @@ struct Reader {
     };
     if (has[0] != has[1]) refuse(has[0] ? keys[1] : keys[0], "missing: the crown depth attributes come together");
     if (!has[0]) return std::nullopt;
-    std::vector<CrownDepth> out(leaf_count);
+    std::vector<CrownCube> out(leaf_count);
     for (int side = 0; side < 2; ++side) {
       const tinygltf::Value& v = attrs.Get(keys[side]);
       if (!v.IsNumber()) refuse(keys[side], "expected an accessor index");
@@ -412,7 +412,7 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
     if (n.name == "hull" && !hull) hull = &n;
   }
   if (!branches) r.fail("no node named 'branches'");
-  std::optional<std::vector<CrownDepth>> crown_depths;
+  std::optional<std::vector<CrownCube>> crown_depths;
   tree.branches = r.mesh(*branches, &tree.bark_color);
   r.bark(*branches, tree);
   if (leaves) {

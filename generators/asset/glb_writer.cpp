@@ -274,7 +274,7 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
         throw std::logic_error("encode_glb: " + std::to_string(crown->depths.size()) + " crown depths for " +
                                std::to_string(tree.leaves.size()) + " leaves");
       std::vector<float> pos, neg;
-      for (const CrownDepth& d : crown->depths) {
+      for (const CrownCube& d : crown->depths) {
         pos.insert(pos.end(), {d[0], d[2], d[4]});
         neg.insert(neg.end(), {d[1], d[3], d[5]});
       }

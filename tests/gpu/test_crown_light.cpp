@@ -39,7 +39,7 @@ struct Halves {
   double ratio() const { return far / near; }
 };
 
-class CrownLight : public ValidatedGpuTest {
+class CrownShadowGpu : public ValidatedGpuTest {
  protected:
   // One tree at the origin, yaw `yaw_deg`, sun 10° above the horizon toward +X, an
   // orthographic camera straight above the crown; leaves alone (no bark), no shadows.
@@ -96,13 +96,13 @@ class CrownLight : public ValidatedGpuTest {
 
 }  // namespace
 
-TEST_F(CrownLight, LowSideSunDarkensTheFarSideAtAnyYaw) {
+TEST_F(CrownShadowGpu, LowSideSunDarkensTheFarSideAtAnyYaw) {
   TreeModel baked = baked_broadleaf();
   ASSERT_TRUE(baked.bake.crown.has_value());
   Halves h0 = measure(baked, 0.0f), h180 = measure(baked, 180.0f), h90 = measure(baked, 90.0f);
   // The same κ with every depth 0: what leaf orientation alone does.
   TreeModel flat = baked;
-  for (CrownDepth& d : flat.bake.crown->depths) d.fill(0.0f);
+  for (CrownCube& d : flat.bake.crown->depths) d.fill(0.0f);
   Halves hz = measure(flat, 0.0f);
   std::printf("far/near: baked %.3f (yaw 0), %.3f (yaw 180), %.3f (yaw 90); zero depths %.3f\n", h0.ratio(), h180.ratio(),
               h90.ratio(), hz.ratio());

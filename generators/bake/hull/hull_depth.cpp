@@ -96,9 +96,9 @@ glm::vec3 crown_direction(int j) {
   return glm::normalize(glm::vec3(float(s * std::cos(a)), float(y), float(s * std::sin(a))));
 }
 
-std::vector<CrownDepth> crown_depths(const MetaballField& field, float iso, std::span<const glm::vec3> points,
+std::vector<CrownCube> crown_depths(const MetaballField& field, float iso, std::span<const glm::vec3> points,
                                      const CrownDepthParams& params) {
-  std::vector<CrownDepth> out(points.size(), CrownDepth{});
+  std::vector<CrownCube> out(points.size(), CrownCube{});
   if (field.centers.empty() || points.empty()) return out;
   if (!(params.step_fraction > 0.0f) || !(iso > 0.0f) || params.max_cells_per_axis < 8)
     throw InputError("", 0, "crown_depths", "step and iso must be positive, max_cells_per_axis >= 8");

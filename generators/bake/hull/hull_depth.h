@@ -44,7 +44,7 @@ glm::vec3 crown_direction(int j);
 // Six depths (metres: +x, −x, +y, −y, +z, −z) per point, index-aligned with `points`, in the
 // field `field` with iso-value `iso`. Deterministic (the same input gives the same bits, at
 // any thread count). Empty field or no points: all zero.
-std::vector<CrownDepth> crown_depths(const MetaballField& field, float iso, std::span<const glm::vec3> points,
+std::vector<CrownCube> crown_depths(const MetaballField& field, float iso, std::span<const glm::vec3> points,
                                      const CrownDepthParams& params = {});
 
 // Volume enclosed by a closed, outward-oriented triangle mesh (divergence theorem); 0 if empty.
