@@ -27,9 +27,11 @@ inline float mix(float a, float b, float t) { return a + (b - a) * t; }
 #define CROWN_INLINE
 #endif
 
-// κ (1/m) used with the bounding-sphere fallback (a model baked before crown depths): the
-// sphere also encloses the trunk and the air around the crown, so its paths are long and κ low.
-#define CROWN_FALLBACK_EXTINCTION 0.25f
+// The bounding-sphere fallback (a model baked before crown depths): κ = this optical depth ÷
+// the sphere's radius, so that light from the centre to the sphere's edge keeps exp(−0.5). The
+// sphere also encloses the trunk and the air around the crown (its paths are long), and the
+// model may be no crown at all, hence a mild value.
+#define CROWN_FALLBACK_OPTICAL_DEPTH 0.5f
 // Sky directions averaged (cosine-weighted Fibonacci disk lifted onto the hemisphere).
 #define CROWN_SKY_DIRECTIONS 12
 // Light the leaves scatter among themselves keeps a deep leaf from going black: the ambient

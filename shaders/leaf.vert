@@ -56,7 +56,7 @@ void main() {
     crown_pos = vec3(dx.x, dy.x, dz.x);
     crown_neg = vec3(dx.y, dy.y, dz.y);
   } else {
-    kappa = CROWN_FALLBACK_EXTINCTION;
+    kappa = CROWN_FALLBACK_OPTICAL_DEPTH / max(m.bounding_sphere.w, 1e-3);
     crown_pos = crown_sphere_pos(local, m.bounding_sphere.xyz, m.bounding_sphere.w);
     crown_neg = crown_sphere_neg(local, m.bounding_sphere.xyz, m.bounding_sphere.w);
   }

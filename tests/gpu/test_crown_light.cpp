@@ -104,10 +104,15 @@ TEST_F(CrownShadowGpu, LowSideSunDarkensTheFarSideAtAnyYaw) {
   TreeModel flat = baked;
   for (CrownCube& d : flat.bake.crown->depths) d.fill(0.0f);
   Halves hz = measure(flat, 0.0f);
-  std::printf("far/near: baked %.3f (yaw 0), %.3f (yaw 180), %.3f (yaw 90); zero depths %.3f\n", h0.ratio(), h180.ratio(),
-              h90.ratio(), hz.ratio());
+  // No crown depths (an asset baked before them): the bounding-sphere fallback.
+  TreeModel unbaked = baked;
+  unbaked.bake.crown.reset();
+  Halves hf = measure(unbaked, 0.0f);
+  std::printf("far/near: baked %.3f (yaw 0), %.3f (yaw 180), %.3f (yaw 90); zero depths %.3f; sphere fallback %.3f\n",
+              h0.ratio(), h180.ratio(), h90.ratio(), hz.ratio(), hf.ratio());
   EXPECT_LE(h0.ratio(), 0.6);
   EXPECT_LE(h180.ratio(), 0.6);  // the sun is turned into model space: any rotation works
   EXPECT_LE(h90.ratio(), 0.6);
   EXPECT_GT(hz.ratio(), h0.ratio() + 0.1);  // it is the baked term that darkens the far side
+  EXPECT_GT(hf.ratio(), h0.ratio());        // more than the sphere guess does
 }
