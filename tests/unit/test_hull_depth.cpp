@@ -237,13 +237,19 @@ TEST(CrownShadow, OverheadSunDarkensTheInterior) {
   std::vector<glm::vec3> centers;
   for (const LeafPlacement& l : m.leaves) centers.push_back(leaf_center(l));
   std::vector<double> below = depths_below_hull(centers);
-  double deep = 0, shallow = 0;
+  double deep = 0, shallow = 0, sky_mean = 0;
+  float sky_min = 1.0f;
   size_t n_deep = 0, n_shallow = 0;
   for (size_t i = 0; i < m.leaves.size(); ++i) {
+    const CrownCube& d = m.bake.crown->depths[i];
+    float sky = crown::crown_sky_visibility({d[0], d[2], d[4]}, {d[1], d[3], d[5]}, kappa);
+    sky_min = std::min(sky_min, sky), sky_mean += sky;
     float b = leaf_light(m.bake.crown->depths[i], kappa, leaf_normal(m.leaves[i]), {0.0f, 1.0f, 0.0f});
     if (below[i] > 1.0) deep += b, ++n_deep;
     if (below[i] < 0.2) shallow += b, ++n_shallow;
   }
+  std::printf("sky visibility: min %.3f, mean %.3f (ambient factor >= %.2f)\n", double(sky_min),
+              sky_mean / double(m.leaves.size()), double(CROWN_SKY_FLOOR));
   ASSERT_GT(n_deep, 20u);
   ASSERT_GT(n_shallow, 20u);
   deep /= double(n_deep), shallow /= double(n_shallow);
