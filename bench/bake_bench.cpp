@@ -25,6 +25,7 @@
 
 #include "engine/tools/bake/pr_bake.h"
 #include "generators/bake/hull/hull.h"
+#include "generators/bake/hull/hull_depth.h"
 #include "generators/bake/priority/priority.h"
 #include "generators/species/registry.h"
 #include "prune_math.h"
@@ -70,6 +71,9 @@ void bake_time(vk::Context& ctx, const Options& o) {
   Hull h = hull_of(m);
   double hull_s = t.wall_s(), hull_cpu = t.cpu_s();
   t = Timer();
+  attach_crown_light(m, h);
+  double crown_s = t.wall_s(), crown_cpu = t.cpu_s();
+  t = Timer();
   apply_priority(m, h, Priority::combined, m.meta.value("seed", uint64_t(1)));
   double prio_s = t.wall_s(), prio_cpu = t.cpu_s();
   t = Timer();
@@ -80,6 +84,8 @@ void bake_time(vk::Context& ctx, const Options& o) {
   double pr_s = t.wall_s(), pr_cpu = t.cpu_s();
   const PrBakeStats& st = pm.stats;
   std::printf("  hull                 %7.2f s wall %7.2f s cpu\n", hull_s, hull_cpu);
+  std::printf("  crown depths         %7.2f s wall %7.2f s cpu  (kappa %.3f /m)\n", crown_s, crown_cpu,
+              m.bake.crown ? double(m.bake.crown->extinction) : 0.0);
   std::printf("  priority (combined)  %7.2f s wall %7.2f s cpu\n", prio_s, prio_cpu);
   std::printf("  PR references        %7.2f s wall  (%u views: full + branch masks)\n", st.reference_seconds, o.views);
   std::printf("  PR renders + counts  %7.2f s wall  (%u pruned renders, %u submits incl. readback)\n",

@@ -172,6 +172,9 @@ GPU_STRUCT Model {
   float occlusion_margin;    // model-space meters a sample is moved toward the camera before the test
   float card_radius;         // farthest vertex of the leaf card from its origin (leaf scale 1)
   uint bark_texture_layer;   // layer of BINDING_BARK_ALBEDO / _NORMALS (0: neutral, untextured)
+  // κ (1/m) of the baked crown depths (Leaf::crown_depth, shaders/crown_light.h); 0: none
+  // baked, leaf.vert then uses the exit distance from the bounding sphere with a default κ.
+  float crown_extinction;
 };
 
 // One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.
@@ -193,6 +196,9 @@ GPU_STRUCT Leaf {
   vec4 position_scale;  // model space position, w = uniform scale
   vec4 rotation;        // unit quaternion xyzw
   vec4 color;           // rgb multiplier of the model's leaf color
+  // Baked depth below the crown's hull (metres, model space) as packHalf2x16 pairs:
+  // x = (+x, −x), y = (+y, −y), z = (+z, −z), w = 0 (shaders/crown_light.h). Zero when unbaked.
+  uvec4 crown_depth;
 };
 
 // One partly occluded tree whose leaves [first_leaf, end_leaf) of the mode's prefix are

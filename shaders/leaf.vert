@@ -6,6 +6,7 @@
 #extension GL_ARB_shader_draw_parameters : require
 #include "common.glsl"
 #include "draw_push.glsl"
+#include "crown_light.h"
 
 layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_TAIL_LEAVES, std430) readonly buffer TailLeaves { uint tail_leaves[]; };
@@ -18,6 +19,7 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
+layout(location = 5) out float out_sun_visibility;
 
 float hash(uint x) {
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
@@ -44,8 +46,30 @@ void main() {
   out_albedo = m.leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
   out_uv_layer = vec3(in_uv, float(m.leaf_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda);
-  // Leaves deep inside the crown see less sky: a cheap occlusion term from the crown sphere.
-  float depth = length(local - m.bounding_sphere.xyz) / max(m.bounding_sphere.w, 1e-3);
-  out_ao_translucency = vec2(mix(0.35, 1.0, clamp(depth * 1.3 - 0.2, 0.0, 1.0)), 0.45);
+  out_sun_visibility = 1.0;
+  out_ao_translucency = vec2(1.0, 0.45);
+  if (draw.cascade != SHADOW_NONE) {  // the shadow map needs the position alone
+    gl_Position = draw_view_proj() * vec4(world, 1.0);
+    return;
+  }
+  // Crown self-shadowing (crown_light.h): the leaf's baked depths below the hull, or unbaked
+  // the exit distances from the bounding sphere; the sun direction in model space (the
+  // inverse yaw; uniform scale does not turn it).
+  float kappa = m.crown_extinction;
+  vec3 crown_pos, crown_neg;
+  if (kappa > 0.0) {
+    vec2 dx = unpackHalf2x16(leaf.crown_depth.x), dy = unpackHalf2x16(leaf.crown_depth.y),
+         dz = unpackHalf2x16(leaf.crown_depth.z);
+    crown_pos = vec3(dx.x, dy.x, dz.x);
+    crown_neg = vec3(dx.y, dy.y, dz.y);
+  } else {
+    kappa = CROWN_FALLBACK_OPTICAL_DEPTH / max(m.bounding_sphere.w, 1e-3);
+    crown_pos = crown_sphere_pos(local, m.bounding_sphere.xyz, m.bounding_sphere.w);
+    crown_neg = crown_sphere_neg(local, m.bounding_sphere.xyz, m.bounding_sphere.w);
+  }
+  // κ·D is the same at any instance scale (leaf area ∝ s², volume ∝ s³, paths ∝ s).
+  vec3 sun_model = rotate_yaw(frame.sun_dir.xyz, vec2(inst.yaw_cos_sin.x, -inst.yaw_cos_sin.y));
+  out_sun_visibility = crown_sun_transmittance(crown_pos, crown_neg, kappa, sun_model);
+  out_ao_translucency = vec2(crown_ambient(crown_sky_visibility(crown_pos, crown_neg, kappa)), 0.45);
   gl_Position = draw_view_proj() * vec4(world, 1.0);
 }

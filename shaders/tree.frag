@@ -20,6 +20,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_albedo;
 layout(location = 3) in vec2 in_ao_translucency;
 layout(location = 4) in vec3 in_uv_layer;
+layout(location = 5) in float in_sun_visibility;
 layout(location = 0) out vec4 out_color;
 
 // The normal n perturbed by tangent-space normal t (glTF convention: +X along +u, +Y along
@@ -74,6 +75,7 @@ void main() {
     out_color = vec4(vec3(sun_visibility), clamp(alpha, 0.0, 1.0));
     return;
   }
-  vec3 hdr = shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y, sun_visibility);
+  // The sun past the crown (baked, leaf.vert) and past everything else (the shadow map).
+  vec3 hdr = shade(albedo, n, in_world, in_ao_translucency.x, in_ao_translucency.y, sun_visibility * in_sun_visibility);
   out_color = vec4(tone_map(hdr), clamp(alpha, 0.0, 1.0));
 }

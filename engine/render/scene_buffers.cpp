@@ -1,6 +1,7 @@
 #include "engine/render/scene_buffers.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -8,6 +9,8 @@
 #include "engine/render/bark_textures.h"
 #include "engine/render/leaf_textures.h"
 #include "generators/asset/pr_tables.h"
+
+#include <glm/gtc/packing.hpp>
 
 namespace forest {
 
@@ -55,9 +58,23 @@ void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
   for (const Vertex& v : tm.leaf_card.vertices) m.card_radius = std::max(m.card_radius, glm::length(v.position));
   m.leaf_offset = uint32_t(a.leaves.size());
   m.leaf_count = tm.leaf_card.indices.empty() ? 0 : uint32_t(tm.leaves.size());
-  for (const LeafPlacement& l : tm.leaves)
+  // Crown depths (bake): one per leaf, checked on load; κ = 0 tells leaf.vert there are none.
+  const std::optional<CrownLight>& crown = tm.bake.crown;
+  if (crown && crown->depths.size() != tm.leaves.size())
+    throw std::invalid_argument("upload_scene: " + std::to_string(crown->depths.size()) + " crown depths for " +
+                                std::to_string(tm.leaves.size()) + " leaves");
+  m.crown_extinction = crown ? crown->extinction : 0.0f;
+  for (size_t i = 0; i < tm.leaves.size(); ++i) {
+    const LeafPlacement& l = tm.leaves[i];
+    glm::uvec4 depth(0u);
+    if (crown) {
+      const CrownCube& d = crown->depths[i];
+      depth = glm::uvec4(glm::packHalf2x16({d[0], d[1]}), glm::packHalf2x16({d[2], d[3]}),
+                         glm::packHalf2x16({d[4], d[5]}), 0u);
+    }
     a.leaves.push_back({glm::vec4(l.position, l.scale), glm::vec4(l.rotation.x, l.rotation.y, l.rotation.z, l.rotation.w),
-                        glm::vec4(l.color, 1.0f)});
+                        glm::vec4(l.color, 1.0f), depth});
+  }
 }
 
 void add_bake_data(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {

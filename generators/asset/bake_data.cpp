@@ -128,6 +128,8 @@ void bake_to_json(const BakeData& bake, nlohmann::json& forest) {
     forest["hull_iso"] = bake.hull->iso;
     forest["hull_radius"] = bake.hull->radius;
   }
+  // The depths are per-leaf attributes of the leaves node (glb_writer.cpp); κ is the key.
+  if (bake.crown) forest["crown_extinction"] = bake.crown->extinction;
   if (!bake.priority.empty()) forest["priority"] = bake.priority;
   if (bake.pr_tables) {
     forest["pr_tables"] = to_json(*bake.pr_tables);
@@ -143,6 +145,13 @@ BakeData bake_from_json(nlohmann::json& forest, const std::string& name) {
   BakeReader r{forest, name};
   BakeData b;
   b.hull = r.hull();
+  if (auto v = r.take("crown_extinction")) {
+    // decode_glb pairs it with the leaves' _CROWN_DEPTH_* attributes (one without the other
+    // is refused there).
+    b.crown = CrownLight{};
+    b.crown->extinction = float(r.number(*v, "crown_extinction", 0.0, kMaxCrownExtinctionOnLoad));
+    if (!(b.crown->extinction > 0.0f)) r.fail("crown_extinction", "expected a positive number");
+  }
   if (auto v = r.take("priority")) b.priority = r.order_name(*v, "priority");
   std::optional<nlohmann::json> tables = r.take("pr_tables"), samples = r.take("pr_samples"), baked = r.take("baked");
   if (tables) {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "generators/asset/bake_data.h"
 #include "generators/core/input_error.h"
@@ -253,6 +254,36 @@ struct Reader {
     }
     return out;
   }
+
+  // The baked crown depths (_CROWN_DEPTH_POS / _NEG, both or neither), one per leaf, each
+  // finite and in [0, kMaxCrownDepthOnLoad]. nullopt when absent.
+  std::optional<std::vector<CrownCube>> crown_depths(const tinygltf::Node& node, size_t leaf_count) const {
+    auto ext = node.extensions.find(kInstancing);
+    if (ext == node.extensions.end()) return std::nullopt;
+    const tinygltf::Value& attrs = ext->second.Get("attributes");
+    const char* keys[2] = {"_CROWN_DEPTH_POS", "_CROWN_DEPTH_NEG"};
+    bool has[2] = {attrs.Has(keys[0]), attrs.Has(keys[1])};
+    auto refuse = [&](const char* key, const std::string& what) {
+      throw InputError(name, 0, std::string("EXT_mesh_gpu_instancing.") + key, what);
+    };
+    if (has[0] != has[1]) refuse(has[0] ? keys[1] : keys[0], "missing: the crown depth attributes come together");
+    if (!has[0]) return std::nullopt;
+    std::vector<CrownCube> out(leaf_count);
+    for (int side = 0; side < 2; ++side) {
+      const tinygltf::Value& v = attrs.Get(keys[side]);
+      if (!v.IsNumber()) refuse(keys[side], "expected an accessor index");
+      std::vector<float> d = floats(v.GetNumberAsInt(), TINYGLTF_TYPE_VEC3, keys[side]);
+      if (d.size() / 3 != leaf_count)
+        refuse(keys[side], std::to_string(d.size() / 3) + " depths for " + std::to_string(leaf_count) + " leaves");
+      for (size_t i = 0; i < d.size(); ++i) {
+        if (!(d[i] >= 0.0f && d[i] <= kMaxCrownDepthOnLoad))  // also NaN (floats() refuses it first)
+          refuse(keys[side], "leaf " + std::to_string(i / 3) + ": expected a depth in [0, " +
+                                 std::to_string(kMaxCrownDepthOnLoad) + "] m, got " + std::to_string(d[i]));
+        out[i / 3][2 * (i % 3) + size_t(side)] = d[i];
+      }
+    }
+    return out;
+  }
 };
 
 // File access is refused while decoding: an asset is self-contained, and a malformed one
@@ -381,11 +412,13 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
     if (n.name == "hull" && !hull) hull = &n;
   }
   if (!branches) r.fail("no node named 'branches'");
+  std::optional<std::vector<CrownCube>> crown_depths;
   tree.branches = r.mesh(*branches, &tree.bark_color);
   r.bark(*branches, tree);
   if (leaves) {
     tree.leaf_card = r.mesh(*leaves, &tree.leaf_color);
     tree.leaves = r.instances(*leaves);
+    crown_depths = r.crown_depths(*leaves, tree.leaves.size());
     if (leaves->mesh >= 0) tree.leaf_texture = r.base_color_texture(r.material(model.meshes[size_t(leaves->mesh)]));
   }
   if (hull) {
@@ -434,6 +467,11 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
     tree.bounding_sphere = bounding_sphere(tree.branches, tree.leaf_card, tree.leaves);
   // Last, so that the checks above also see assets whose bake data is refused.
   tree.bake = bake_from_json(tree.meta, name);  // takes the bake keys out of meta
+  // κ in extras.forest and the per-leaf depths come together.
+  if (bool(crown_depths) != bool(tree.bake.crown))
+    throw InputError(name, 0, crown_depths ? "extras.forest.crown_extinction" : "EXT_mesh_gpu_instancing._CROWN_DEPTH_POS",
+                     crown_depths ? "missing: the leaves carry crown depths" : "missing: extras.forest.crown_extinction is set");
+  if (crown_depths) tree.bake.crown->depths = std::move(*crown_depths);
   return tree;
 }
 

@@ -2,7 +2,8 @@
 //   scene 0 -> node "tree" -> children "branches" (mesh "branches", material "bark")
 //                                      "leaves"   (mesh "leaf_card", material "leaf",
 //                                                  EXT_mesh_gpu_instancing T/R/S accessors
-//                                                  and _COLOR_0: per-leaf color multiplier)
+//                                                  and _COLOR_0: per-leaf color multiplier; baked:
+//                                                  _CROWN_DEPTH_POS / _NEG, crown depths)
 //   nodes "branches_lod1", "branches_lod2", ... (meshes of the same names, material "bark",
 //     mesh extras {"forest_lod": {"level": i, "error": meters}}): the simplified branch LODs.
 //     They are not in the scene, so a generic viewer shows LOD0 only; decode_glb finds them
@@ -268,6 +269,18 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
     attrs["ROTATION"] = tinygltf::Value(w.add_floats(r, 4, 0, false));
     attrs["SCALE"] = tinygltf::Value(w.add_floats(s, 3, 0, false));
     attrs["_COLOR_0"] = tinygltf::Value(w.add_floats(c, 3, 0, false));  // three.js: instance colour
+    if (const std::optional<CrownLight>& crown = tree.bake.crown) {  // baked crown depths, metres
+      if (crown->depths.size() != tree.leaves.size())
+        throw std::logic_error("encode_glb: " + std::to_string(crown->depths.size()) + " crown depths for " +
+                               std::to_string(tree.leaves.size()) + " leaves");
+      std::vector<float> pos, neg;
+      for (const CrownCube& d : crown->depths) {
+        pos.insert(pos.end(), {d[0], d[2], d[4]});
+        neg.insert(neg.end(), {d[1], d[3], d[5]});
+      }
+      attrs["_CROWN_DEPTH_POS"] = tinygltf::Value(w.add_floats(pos, 3, 0, false));
+      attrs["_CROWN_DEPTH_NEG"] = tinygltf::Value(w.add_floats(neg, 3, 0, false));
+    }
     tinygltf::Value::Object ext;
     ext["attributes"] = tinygltf::Value(std::move(attrs));
     leaves.extensions[kInstancing] = tinygltf::Value(std::move(ext));
@@ -309,7 +322,13 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   m.buffers.push_back(std::move(buffer));
 
   nlohmann::json forest = tree.meta;
-  bake_to_json(tree.bake, forest);
+  if (tree.bake.crown && !(!tree.leaves.empty() && drawable(tree.leaf_card))) {
+    BakeData bake = tree.bake;  // no leaves node to carry the depths: κ alone would be refused
+    bake.crown.reset();
+    bake_to_json(bake, forest);
+  } else {
+    bake_to_json(tree.bake, forest);
+  }
   tinygltf::Value::Object extras;
   extras["forest"] = to_value(forest);
   m.extras = tinygltf::Value(std::move(extras));

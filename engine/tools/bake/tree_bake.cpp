@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "generators/bake/hull/hull.h"
+#include "generators/bake/hull/hull_depth.h"
 #include "generators/bake/priority/priority.h"
 #include "generators/core/input_error.h"
 
@@ -20,6 +21,9 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
   hp.seed = seed;
   Hull hull = build_hull(model.leaves, plant_height(model), hp);
   attach_hull(model, hull);
+  auto t_hull_mesh = clock::now();
+  attach_crown_light(model, hull);  // per-leaf depths; apply_priority reorders them with the leaves
+  auto t_crown = clock::now();
   apply_priority(model, hull, *priority, seed);
   auto t_hull = clock::now();
 
@@ -40,6 +44,7 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
   TreeBakeResult r;
   r.measurement = std::move(pm);
   r.hull_seconds = std::chrono::duration<double>(t_hull - t0).count();
+  r.crown_seconds = std::chrono::duration<double>(t_crown - t_hull_mesh).count();
   r.pr_seconds = std::chrono::duration<double>(clock::now() - t_hull).count();
   r.hull_triangles = hull.mesh.indices.size() / 3;
   return r;

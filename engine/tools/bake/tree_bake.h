@@ -1,4 +1,5 @@
-// Bake a generated model for run-time pruning: metaball hull, priority-sorted leaves and
+// Bake a generated model for run-time pruning: metaball hull, crown depths (self-shadowing),
+// priority-sorted leaves and
 // PR-measured s_opt / λ_opt tables (stored in model.bake). Used by `forest bake` and the
 // species cache.
 #pragma once
@@ -21,7 +22,8 @@ struct TreeBakeSettings {
 
 struct TreeBakeResult {
   PrMeasurement measurement;
-  double hull_seconds = 0, pr_seconds = 0;
+  double hull_seconds = 0, pr_seconds = 0;  // hull_seconds includes crown_seconds and the priority order
+  double crown_seconds = 0;                 // attach_crown_light: per-leaf crown depths and κ
   size_t hull_triangles = 0;
 };
 

@@ -156,6 +156,13 @@ void reorder_leaves(TreeModel& model, std::span<const uint32_t> order) {
     out.push_back(model.leaves[i]);
   }
   model.leaves = std::move(out);
+  // Per-leaf bake data follows its leaf.
+  if (model.bake.crown && model.bake.crown->depths.size() == n) {
+    std::vector<CrownCube> depths;
+    depths.reserve(n);
+    for (uint32_t i : order) depths.push_back(model.bake.crown->depths[i]);
+    model.bake.crown->depths = std::move(depths);
+  }
 }
 
 void apply_priority(TreeModel& model, const Hull& hull, Priority p, uint64_t seed) {
