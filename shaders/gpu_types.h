@@ -72,6 +72,7 @@ using mat4 = glm::mat4;
 // Cascaded shadow maps of the sun (shadow_pass.h): cascades over [near, shadow_distance].
 #define SHADOW_CASCADES 3
 #define SHADOW_NONE 0xffffffffu  // DrawPush.cascade of the camera's own draws
+#define SHADOW_PCF_TEXELS 3      // the filter's footprint: 3x3 bilinear compare taps (lighting.glsl)
 // The command buffer holds, for n instances: the camera's n branch draws, its 2n leaf draws
 // (prefix and occlusion tail), then per cascade n branch draws followed by n leaf draws.
 #define COMMANDS_PER_INSTANCE (3 + 2 * SHADOW_CASCADES)

@@ -5,10 +5,11 @@
 // leaf prefix) to that cascade's command range. λ and s are those of the camera's mode
 // (tree_detail.glsl), so a pruned tree casts its pruned shadow; occlusion plays no part (a
 // tree hidden from the camera still casts), nor does the camera frustum (a tree behind the
-// camera still shades what it sees). A cascade sees a tree no sharper than its texels allow:
-// λ and s are the mode's at the distance where the camera would see the tree at the
-// cascade's resolution, if that is farther than the tree is (a far cascade's coarse texels
-// need fewer, larger leaves for the same coverage, as a far camera does: Neubert 2012 ch7).
+// camera still shades what it sees). A cascade sees a tree no sharper than its filtered
+// texels allow: λ and s are the mode's at the distance where the camera would see the tree at
+// the resolution of the PCF footprint (SHADOW_PCF_TEXELS texels), if that is farther than the
+// tree is: detail finer than the filter is averaged away, and coarse samples need fewer,
+// larger leaves for the same coverage, as a far camera does (Neubert 2012 ch7).
 // Branch LOD: the coarsest level whose error stays under one texel.
 #include "common.glsl"
 #include "tree_detail.glsl"
@@ -31,9 +32,9 @@ void main() {
     for (uint p = 0; p < 6; ++p)
       if (dot(frame.shadow_planes[c * 6 + p].xyz, center) + frame.shadow_planes[c * 6 + p].w < -radius) inside = false;
     if (!inside) continue;
-    // frame.lod.x: pixels per metre at distance 1, so a texel of t metres is one pixel at t · lod.x.
+    // frame.lod.x: pixels per metre at distance 1, so t metres are one pixel at t · lod.x.
     float lambda, area_scale;
-    tree_detail(m, max(camera_distance, frame.shadow_texel[c] * frame.lod.x), lambda, area_scale);
+    tree_detail(m, max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x), lambda, area_scale);
     uint k = leaf_prefix(lambda, m.leaf_count);
     uint lod = 0;
     for (uint e = 1; e < m.lod_count; ++e)

@@ -79,11 +79,21 @@ ShadowCascades compute_shadow_cascades(const CameraDesc& camera, float aspect, g
     sc.texel = texel;
     sc.center = glm::vec3(glm::inverse(rotation) * glm::vec4(ls, 1.0f));
     sc.radius = radius;
-    // Caster volume planes (Gribb-Hartmann; clip 0 <= z <= w, -w <= x, y <= w).
-    const glm::mat4& m = sc.view_proj;
-    auto row = [&](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
-    glm::vec4 planes[6] = {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(2), row(3) - row(2)};
-    for (int i = 0; i < 6; ++i) sc.planes[size_t(i)] = planes[i] / glm::length(glm::vec3(planes[i]));
+    // Caster volume: only what can shade a receiver of this slice. The map covers the slice's
+    // sphere (for stability), but a caster outside the slice's tight box in the sun's frame
+    // (its corners' x, y extent, plus the PCF footprint) shades only texels no receiver of
+    // this cascade reads; toward the sun it reaches the bounds, away from it the sphere's end.
+    glm::vec2 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& p : corners) {
+      glm::vec3 q = glm::vec3(rotation * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, glm::vec2(q)), hi = glm::max(hi, glm::vec2(q));
+    }
+    lo -= glm::vec2(3.0f * texel), hi += glm::vec2(3.0f * texel);
+    const glm::vec3 ax(rotation[0][0], rotation[1][0], rotation[2][0]);  // rows of the rotation
+    const glm::vec3 ay(rotation[0][1], rotation[1][1], rotation[2][1]);
+    const glm::vec3 az(rotation[0][2], rotation[1][2], rotation[2][2]);  // toward the sun
+    sc.planes = {glm::vec4(ax, -lo.x), glm::vec4(-ax, hi.x), glm::vec4(ay, -lo.y), glm::vec4(-ay, hi.y),
+                 glm::vec4(-az, -near), glm::vec4(az, far)};
     zn = zf;
   }
   return out;

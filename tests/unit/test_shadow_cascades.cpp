@@ -67,6 +67,8 @@ TEST(ShadowCascades, EveryViewPointIsInsideItsCascadeAndEveryCasterTowardTheSunT
           EXPECT_LE(std::abs(clip.y), 1.0f) << "depth " << depth << " lift " << lift;
           EXPECT_GE(clip.z, 0.0f) << "depth " << depth << " lift " << lift;
           EXPECT_LE(clip.z, 1.0f) << "depth " << depth << " lift " << lift;
+          for (const glm::vec4& plane : s.cascades[c].planes)  // the cull keeps it as a caster
+            EXPECT_GE(glm::dot(glm::vec3(plane), q) + plane.w, 0.0f) << "depth " << depth << " lift " << lift;
           if (lift > 0.0f) {  // the caster is nearer the sun than the point it shades
             glm::vec4 at = s.cascades[c].view_proj * glm::vec4(p, 1.0f);
             EXPECT_LT(clip.z, at.z);
@@ -75,6 +77,31 @@ TEST(ShadowCascades, EveryViewPointIsInsideItsCascadeAndEveryCasterTowardTheSunT
         }
       }
   EXPECT_GT(checked, 200);
+}
+
+// The caster volume is tighter than the map: trees beside the view slice, which shade no
+// receiver of it, are not drawn.
+TEST(ShadowCascades, CastersBesideTheViewAreCulled) {
+  CameraDesc cam = camera_at({0, 10, 0}, {0, -0.1f, 1});
+  ShadowCascades s = compute_shadow_cascades(cam, 1.5f, kSun, 150.0f, 2048, kBounds);
+  for (size_t c = 0; c < s.cascades.size(); ++c) {
+    const ShadowCascade& sc = s.cascades[c];
+    // Ground points the map covers: how many of them the cull keeps as casters.
+    size_t covered = 0, kept = 0;
+    for (float x = -1.5f; x <= 1.5f; x += 0.02f)
+      for (float z = -1.5f; z <= 1.5f; z += 0.02f) {
+        glm::vec3 p = sc.center + sc.radius * glm::vec3(x, 0.0f, z);
+        p.y = 0.0f;
+        glm::vec4 clip = sc.view_proj * glm::vec4(p, 1.0f);
+        if (std::abs(clip.x) > 1.0f || std::abs(clip.y) > 1.0f) continue;
+        ++covered;
+        bool inside = true;
+        for (const glm::vec4& plane : sc.planes) inside = inside && glm::dot(glm::vec3(plane), p) + plane.w >= 0.0f;
+        kept += inside;
+      }
+    ASSERT_GT(covered, 1000u);
+    EXPECT_LT(double(kept) / double(covered), 0.75) << "cascade " << c << ": " << kept << " of " << covered;
+  }
 }
 
 TEST(ShadowCascades, MovingTheCameraSlidesEveryCascadeByWholeTexels) {
