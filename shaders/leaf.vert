@@ -48,7 +48,8 @@ void main() {
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda);
   out_sun_visibility = 1.0;
   out_ao_translucency = vec2(1.0, 0.45);
-  if (draw.cascade != SHADOW_NONE) {  // the shadow map needs the position alone
+  // The shadow map and coverage (mask) frames need the position and uv alone.
+  if (draw.cascade != SHADOW_NONE || (frame.view_flags & VIEW_MASK) != 0) {
     gl_Position = draw_view_proj() * vec4(world, 1.0);
     return;
   }

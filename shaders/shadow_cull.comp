@@ -10,7 +10,7 @@
 // the resolution of the PCF footprint (SHADOW_PCF_TEXELS texels), if that is farther than the
 // tree is: detail finer than the filter is averaged away, and coarse samples need fewer,
 // larger leaves for the same coverage, as a far camera does (Neubert 2012 ch7).
-// Branch LOD: the coarsest level whose error stays under one texel.
+// Branch LOD: the coarsest level whose error stays under that footprint too.
 #include "common.glsl"
 #include "tree_detail.glsl"
 
@@ -38,7 +38,7 @@ void main() {
     uint k = leaf_prefix(lambda, m.leaf_count);
     uint lod = 0;
     for (uint e = 1; e < m.lod_count; ++e)
-      if (m.lod_error[e] * s <= frame.shadow_texel[c]) lod = e;
+      if (m.lod_error[e] * s <= SHADOW_PCF_TEXELS * frame.shadow_texel[c]) lod = e;
     uint base = shadow_command_base(c);
     uint b = atomicAdd(counts.shadow_branch_draws[c], 1);
     atomicAdd(counts.shadow_triangles[c], m.lod_index_count[lod] / 3 + k * (m.card_index_count / 3));

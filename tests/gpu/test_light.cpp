@@ -283,3 +283,39 @@ TEST_F(Light, AHillBetweenTheSunAndATreeShadowsTheTree) {
   EXPECT_GT(flat, 0.25) << "on flat ground the sun's side of the crown is lit";
   EXPECT_LT(behind_ridge, 0.3 * flat) << "behind the ridge the tree is in the hill's shadow";
 }
+
+// Trees shadow each other: a tree standing between a low sun and another tree puts the other
+// tree's sun side into shadow.
+TEST_F(Light, ATreeBetweenTheSunAndAnotherShadowsIt) {
+  const uint32_t size = 128;
+  auto tree_visibility = [&](bool neighbour) {
+    SceneDesc d = flat_ground(size, size, 200.0f);
+    d.sky.sun_direction = glm::normalize(glm::vec3(0.0f, 0.3f, 1.0f));  // low, from +z
+    d.trees = {TreeDesc{0, 0.0f, 0.0f, 1.0f, 0.0f}};
+    if (neighbour) d.trees.push_back(TreeDesc{0, 0.0f, 6.0f, 1.4f, 90.0f});  // nearer the sun, larger
+    Scene s = scene_of(std::move(d), {broadleaf()});
+    Renderer renderer(ctx_, s, size, size, 1);
+    CameraDesc cam;  // from the side (-x), framing the first tree
+    cam.position = {-25.0f, 5.0f, -2.0f};
+    cam.target = {0.0f, 5.0f, -2.0f};
+    cam.fov_deg = 30.0f;
+    FrameSettings f;
+    f.shadows = true;
+    f.shadow_view = true;
+    FrameImage vis, mask;
+    renderer.render(cam, &vis, f);
+    f.mask = true;
+    renderer.render(cam, &mask, f);
+    // The first tree's half away from the neighbour (z < 0 side of the picture's trees is
+    // its own): every tree pixel in the left two thirds of the frame (screen right is +z).
+    double sum = 0.0;
+    size_t n = 0;
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size * 2 / 3; ++x)
+        if (mask.pixel(x, y)[0] == 255) sum += vis.pixel(x, y)[0] / 255.0, ++n;
+    EXPECT_GT(n, 300u);
+    return n ? sum / double(n) : 0.0;
+  };
+  const double alone = tree_visibility(false), shaded = tree_visibility(true);
+  EXPECT_LT(shaded, 0.75 * alone) << "alone " << alone << ", behind the neighbour " << shaded;
+}
