@@ -17,8 +17,9 @@ build/forest bake "$out/broadleaf.glb" --out "$out/broadleaf_baked.glb" --views 
 build/forest report "$out/broadleaf_baked.glb" --out "$out/report"
 # The demo forest: presets are generated and baked on first use into the species cache.
 build/forest render scenes/demo.toml --out "$out/demo.png" --stats
-build/forest render scenes/demo.toml --out "$out/demo_lambda.png" --view lambda --mode opt
-build/forest render scenes/demo.toml --out "$out/demo_occlusion.png" --mode opt --occlusion on --stats
+# The λ and occlusion views show what is drawn, not the light: without the sun's shadows.
+build/forest render scenes/demo.toml --out "$out/demo_lambda.png" --view lambda --mode opt --shadows off
+build/forest render scenes/demo.toml --out "$out/demo_occlusion.png" --mode opt --occlusion on --shadows off --stats
 # PR of the pruned forest against full detail (coverage masks, Fig 7.1 picture).
 build/forest render scenes/demo.toml --out "$out/mask_full.png" --view mask --mode full
 build/forest render scenes/demo.toml --out "$out/mask_opt.png" --view mask --mode opt
