@@ -185,10 +185,12 @@ BenchPlan plan_bench(const BenchArgs& args) {
   const CameraPath* path = args.path.empty() ? &desc.paths.front() : find_path(desc, args.path);
   if (!path) throw InputError(args.scene, 0, "--path", "no [[path]] named '" + args.path + "'");
   plan.path = size_t(path - desc.paths.data());
-  for (bool shadows : parse_shadows(args.shadows, desc.shadows))
+  // With both settings played, the modes with shadows are named <mode>+shadows.
+  const std::vector<bool> settings = parse_shadows(args.shadows, desc.shadows);
+  for (bool shadows : settings)
     for (BenchMode m : parse_modes(args.modes)) {
       m.shadows = shadows;
-      if (shadows) m.name += "+shadows";
+      if (shadows && settings.size() > 1) m.name += "+shadows";
       plan.modes.push_back(m);
     }
   plan.out = args.out;
@@ -348,6 +350,7 @@ nlohmann::ordered_json mode_json(const ModeSummary& m, const ModeSummary* cook, 
                       {"triangles_saved_share", m.triangles_saved_share()},
                       {"instances_culled", m.occluded},
                       {"gpu_pyramid_and_cull_share", m.occlusion_gpu_share()}};
+  e["shadows_on"] = m.mode.shadows;
   if (m.mode.shadows)
     e["shadows"] = {{"gpu_shadow_ms", m.gpu_shadow_ms},
                     {"gpu_frame_share", m.gpu_frame_ms > 0 ? m.gpu_shadow_ms / m.gpu_frame_ms : 0.0},

@@ -138,9 +138,8 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
              f.wireframe ? "on" : "off"),
       format("[O] occlusion %s (%u culled)  [P] path %s", f.occlusion ? "on" : "off", st.occluded_instances,
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),
-      format("[J] shadows %s (GPU %.2f ms, casters %u %u %u)", f.shadows ? "on" : "off", st.shadow_ms,
-             st.shadow_casters[0], st.shadow_casters[1], st.shadow_casters[2]),
-      format("%.0f %.0f %.0f  %.1f m/s  [C] shot", cam.position.x, cam.position.y, cam.position.z, cam.speed),
+      format("%.0f %.0f %.0f  %.1f m/s  [C] shot  [J] shadows %s", cam.position.x, cam.position.y, cam.position.z,
+             cam.speed, f.shadows ? "on" : "off"),
   };
   if (f.lod_camera) lines.push_back("[K] LOD frozen");
   if (!s.message.empty() && s.now - s.message_time < 4.0) lines.push_back(s.message);

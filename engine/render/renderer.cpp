@@ -430,6 +430,7 @@ FrameStats Renderer::read_stats(FrameSlot& slot) {
   stats.frame_ms = double(ts[kFrameEnd] - ts[kFrameStart]) * period_ms;
   stats.pyramid_ms = double(ts[kPyramidEnd] - ts[kPyramidStart]) * period_ms;
   stats.shadow_ms = double(ts[kShadowEnd] - ts[kShadowStart]) * period_ms;
+  stats.draw_ms = std::max(stats.draw_ms - stats.shadow_ms, 0.0);  // the camera's draw pass alone
   for (int c = 0; c < SHADOW_CASCADES; ++c) {
     stats.shadow_casters[c] = counts.shadow_branch_draws[c];
     stats.shadow_triangles[c] = counts.shadow_triangles[c];

@@ -83,7 +83,7 @@ struct FrameStats {
   uint32_t shadow_triangles[SHADOW_CASCADES] = {};  // bark + leaf triangles drawn into each cascade
   uint32_t shadow_leaves[SHADOW_CASCADES] = {};
   double cull_ms = 0.0;        // GPU timestamps
-  double draw_ms = 0.0;
+  double draw_ms = 0.0;        // the draw pass (sky, terrain, trees), without the shadow pass
   double frame_ms = 0.0;
   double cpu_submit_ms = 0.0;  // CPU: frame constants + record + submit, not the GPU wait
   PipelineStats cull_pipeline, draw_pipeline;  // pipeline-statistics queries per pass
