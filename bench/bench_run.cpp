@@ -3,23 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/trigonometric.hpp>
+#include <glm/geometric.hpp>
+
 #include "engine/tools/report/pr_image.h"
+#include "prune_math.h"
+#include "generators/bake/priority/priority_names.h"
 
 namespace forest {
 
 const std::vector<std::string>& bench_mode_names() {
-  static const std::vector<std::string> names = {"full", "cook", "opt", "opt-combined", "opt-occl"};
+  static const std::vector<std::string> names = {"full",          "cook",           "cook-random", "opt",
+                                                  "opt-random",    "opt-density",    "opt-orientation",
+                                                  "opt-combined",  "opt-layered",    "opt-occl",
+                                                  "target"};
   return names;
 }
 
 std::optional<BenchMode> bench_mode(const std::string& name) {
   BenchMode m;
   m.name = name;
-  // A prune mode, or opt with a suffix: -combined (models baked with the combined priority),
-  // -occl (occlusion feedback).
+  // A prune mode, or opt with a suffix: -<order> (models baked with that priority order),
+  // -occl (occlusion feedback); cook-random: Cook on the random order.
   std::string base = name;
-  if (name == "opt-combined") base = "opt", m.combined_priority = true;
   if (name == "opt-occl") base = "opt", m.occlusion = true;
+  if (name == "cook-random") base = "cook", m.priority = "random";
+  if (name.rfind("opt-", 0) == 0 && parse_priority(name.substr(4))) base = "opt", m.priority = name.substr(4);
   std::optional<PruneMode> mode = parse_prune_mode(base);
   if (!mode) return std::nullopt;
   m.prune_mode = *mode;
@@ -34,6 +43,35 @@ std::vector<uint32_t> bench_frames(const CameraPath& path, uint32_t every, uint3
     frames.push_back(f);
   }
   return frames;
+}
+
+// Trees whose bounding sphere is in `camera`'s frustum and at least 4 px across, `count` of
+// them spread evenly over the sorted projected sizes (all when fewer): (instance, size).
+std::vector<std::pair<uint32_t, float>> trees_in_view(const Scene& scene, const CameraDesc& camera, uint32_t width,
+                                                      uint32_t height, uint32_t count) {
+  CameraMatrices cm = camera_matrices(camera, float(width) / float(height));
+  const float pixels_per_meter = 0.5f * float(height) / std::tan(0.5f * glm::radians(camera.fov_deg));
+  std::vector<std::pair<float, uint32_t>> seen;  // (size, instance)
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const gpu::Instance& inst = scene.instances[i];
+    const glm::vec4 bs = scene.models[inst.model].bounding_sphere;
+    const glm::vec2 cs = inst.yaw_cos_sin;
+    glm::vec3 c(cs.x * bs.x + cs.y * bs.z, bs.y, -cs.y * bs.x + cs.x * bs.z);
+    c = glm::vec3(inst.position_scale) + c * inst.position_scale.w;
+    const float r = bs.w * inst.position_scale.w;
+    bool inside = true;
+    for (const glm::vec4& p : cm.frustum) inside = inside && glm::dot(glm::vec3(p), c) + p.w >= -r;
+    float size = prune::projected_size(r, glm::distance(c, cm.position), pixels_per_meter);
+    if (inside && size >= 4.0f) seen.push_back({std::min(size, 1e5f), i});
+  }
+  std::sort(seen.begin(), seen.end());
+  std::vector<std::pair<uint32_t, float>> out;
+  const size_t n = std::min<size_t>(count, seen.size());
+  for (size_t k = 0; k < n; ++k) {
+    const auto& [size, i] = seen[n > 1 ? k * (seen.size() - 1) / (n - 1) : 0];
+    out.push_back({i, size});
+  }
+  return out;
 }
 
 std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, const CameraPath& path,
@@ -85,6 +123,18 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
       renderer.render(camera, &test_image, test);
       f.pr = compare_coverage(ref_image, test_image, nullptr);
       f.has_pr = true;
+      if (options.tree_pr && !mode.occlusion && !reference) reference.emplace(ctx, scene, options.width, options.height, scene.desc.samples);
+      if (options.tree_pr && !mode.occlusion)
+        for (auto [tree, size] : trees_in_view(scene, camera, options.width, options.height, options.tree_pr)) {
+          FrameSettings full_alone, test_alone = test;
+          full_alone.mask = true;
+          full_alone.solo_instance = test_alone.solo_instance = tree;
+          FrameImage ref_alone, test_alone_image;
+          reference->render(camera, &ref_alone, full_alone);
+          renderer.render(camera, &test_alone_image, test_alone);
+          f.tree_q.push_back(float(compare_coverage(ref_alone, test_alone_image, nullptr).quality()));
+          f.tree_size.push_back(size);
+        }
     }
     frames.push_back(f);
     if (options.progress) options.progress(double(i + 1) / double(options.frames.size()));

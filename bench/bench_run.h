@@ -14,13 +14,15 @@
 namespace forest {
 
 // full, cook, opt (the scene's baked tables, leaves in the scene's [bake] priority order),
-// opt-combined (opt on models baked with the combined priority; the caller builds that
+// opt-<order> for every priority order (opt-random, opt-density, opt-orientation,
+// opt-combined, opt-layered: opt on models baked with that order; the caller builds that
 // scene), opt-occl (opt + depth-buffer occlusion feedback).
+// cook-random is Cook et al. as published, whatever the scene's order: random order, s = 1/λ.
 struct BenchMode {
   std::string name;
   PruneMode prune_mode = PruneMode::full;
   bool occlusion = false;
-  bool combined_priority = false;
+  std::string priority;  // the leaf order the models are baked with; empty: the scene's [bake] priority
   bool shadows = false;  // the sun's shadow maps (--shadows); the name then ends in "+shadows"
 };
 std::optional<BenchMode> bench_mode(const std::string& name);
@@ -33,12 +35,20 @@ struct BenchFrame {
   uint64_t tree_triangles = 0;  // draw-pass primitives minus terrain and sky
   bool has_pr = false;
   PrResult pr;              // coverage of this frame's trees vs full detail, same camera
+  // Per-tree PR at PR frames (BenchPlayOptions::tree_pr): Q of each measured tree drawn alone
+  // against its own full-detail mask from this camera, and its projected size (px across
+  // its bounding sphere).
+  std::vector<float> tree_q, tree_size;
 };
 
 struct BenchPlayOptions {
   uint32_t width = 640, height = 360;
   std::vector<uint32_t> frames;  // path frames to play, in order (time = frame / fps)
   uint32_t pr_every = 10;        // PR at every pr_every-th played frame (0: never)
+  // At each PR frame, this many trees in view (spread over their projected sizes, at least
+  // 4 px across) are also measured one by one, each alone (FrameSettings::solo_instance);
+  // 0: none. Not with occlusion (a tree alone has no occluders).
+  uint32_t tree_pr = 0;
   // With occlusion: at most this many path frames before each played one are drawn first
   // (unrecorded) so its feedback has a history; none: all frames since the last played one.
   std::optional<uint32_t> occlusion_warmup;

@@ -19,6 +19,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i == 0) counts.tail_groups_y = counts.tail_groups_z = 1;  // tail_cull.comp's dispatch
   if (i >= frame.instance_count) return;
+  if (frame.camera_pos.w > 0.0 && i != uint(frame.camera_pos.w) - 1u) return;  // one tree alone (per-tree PR)
   Instance inst = instances[i];
   Model m = models[inst.model];
   float s = inst.position_scale.w;
@@ -36,7 +37,7 @@ void main() {
 
   // Detail level λ and leaf area scale s from the normalized distance d.
   float lambda, area_scale;
-  tree_detail(m, distance(center, frame.lod_camera.xyz), lambda, area_scale);
+  tree_detail(m, radius, distance(center, frame.lod_camera.xyz), lambda, area_scale);
   uint k = leaf_prefix(lambda, m.leaf_count);
   float shown_lambda = lambda;
 

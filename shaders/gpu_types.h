@@ -51,6 +51,7 @@ using mat4 = glm::mat4;
 // ids in C++. Each shader has its own id space; every constant is a 32-bit bool.
 #define SPEC_LEAF 0               // tree.frag: drawing leaf cards (texture alpha, translucency)
 #define SPEC_ALPHA_TO_COVERAGE 1  // tree.frag: the pipeline turns the leaf alpha into coverage
+#define SPEC_COVERAGE_LATTICES 2  // tree.frag: bake coverage at every PR size in one render (PR_SIZES)
 #define SPEC_MINMAX_SAMPLER 0     // depth_pyramid.comp: levels >= 1 reduce with a MIN sampler
 
 // Vertex attribute locations of forest::Vertex (binding 0), in every vertex shader with inputs.
@@ -63,6 +64,7 @@ using mat4 = glm::mat4;
 #define PRUNE_COOK 1   // λ = (1 − d)², area scale s = 1/λ (Cook et al. 2007 as in ch7)
 #define PRUNE_OPT 2    // λ_opt(d) and s_opt(λ) from the model's baked PR tables
 #define PRUNE_FIXED 3  // one λ and s for every tree (bake measurements, tests)
+#define PRUNE_TARGET 4 // smallest λ whose baked Q at the tree's projected size reaches prune.z
 
 // FrameData.view_flags
 #define VIEW_LAMBDA 1  // color trees by their detail level λ (Fig 7.15)
@@ -77,11 +79,21 @@ using mat4 = glm::mat4;
 // (prefix and occlusion tail), then per cascade n branch draws followed by n leaf draws.
 #define COMMANDS_PER_INSTANCE (3 + 2 * SHADOW_CASCADES)
 
-// Per-model PR tables (floats in the prune table buffer, at Model.table_offset):
-// s_opt at λ = i / (S_SAMPLES − 1), then λ_opt at the D_SAMPLES distances of d_sample().
+// Per-model PR tables (floats in the prune table buffer, at Model.table_offset), measured at
+// PR_SIZES projected sizes p_b = Model.pr_size0 / 2^b (pixels across the bounding sphere):
+// per size b one block of TABLE_BLOCK floats, s_opt and q_opt at λ = i / (S_SAMPLES − 1),
+// then λ_opt at the D_SAMPLES distances of d_sample().
 #define S_SAMPLES 21
 #define D_SAMPLES 20
-#define TABLE_FLOATS (S_SAMPLES + D_SAMPLES)
+#define PR_SIZES 6
+#define TABLE_BLOCK (2 * S_SAMPLES + D_SAMPLES)
+#define TABLE_Q_OPT S_SAMPLES             // offset of q_opt in a block
+#define TABLE_LAMBDA_OPT (2 * S_SAMPLES)  // offset of λ_opt in a block
+#define TABLE_FLOATS (PR_SIZES * TABLE_BLOCK)
+// Bake coverage renders (SPEC_COVERAGE_LATTICES): size 0 in the red channel at every pixel;
+// size b >= 1, 2^b times smaller, in the green channel on the lattice of pixels (x, y) with
+// x ≡ y ≡ prune::lattice_offset(b) (mod 2^b): a render at 2^-b the resolution, shifted by half a
+// pixel of the full one. The lattices of different b share no pixel.
 
 #define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
 #define LEAF_TEXTURE_SIZE 256  // every model's leaf texture is one layer of a 2D array
@@ -94,20 +106,21 @@ using mat4 = glm::mat4;
 #define CULL_GROUP_SIZE 64
 #define TAIL_GROUP_SIZE 64    // leaves tested at once by one tail_cull.comp workgroup
 #define PYRAMID_GROUP_SIZE 8  // 8x8 texels per depth_pyramid.comp workgroup
-#define PR_GROUP_SIZE 256
+#define PR_GROUP_SIZE 64
+#define PR_PIXELS_PER_INVOCATION 32  // pr_count.comp
 
 // Per-frame constants (uniform buffer).
 GPU_STRUCT FrameData {
   mat4 view_proj;
   mat4 inv_view_proj;
-  vec4 camera_pos;      // xyz, w = unused
+  vec4 camera_pos;      // xyz, w = 0, or 1 + the one instance drawn (FrameSettings::solo_instance)
   vec4 sun_dir;         // xyz toward the sun (normalized), w = sun intensity
   vec4 sky_zenith;      // rgb linear
   vec4 sky_horizon;     // rgb linear
   vec4 fog;             // rgb linear, w = density per meter
   vec4 frustum[6];      // planes, xyz = inward normal, w = distance; dot(n,p)+w >= 0 inside
   vec4 lod;             // x = pixels per meter at distance 1, y = allowed error in pixels (0: LOD0 only)
-  vec4 prune;           // x = distance where d reaches 1 (m), y = transition band t, z = fixed λ, w = fixed s
+  vec4 prune;           // x = distance where d reaches 1 (m), y = transition band t, z = fixed λ or target Q, w = fixed s
   vec4 lod_camera;      // xyz the point branch LODs and λ are chosen from: the camera, unless frozen
   mat4 prev_view_proj;  // the frame the depth pyramid was built from
   vec4 prev_camera;     // xyz its camera position, w its near plane (m)
@@ -134,8 +147,8 @@ GPU_STRUCT FrameData {
 // Push constants of the tree and terrain vertex shaders: where a draw's commands start and
 // which camera projects it. The camera's own draws use frame.view_proj (cascade SHADOW_NONE);
 // the shadow pass draws each cascade with frame.shadow_view_proj[cascade]. Placed after
-// PrCountPush (offset 16) so the compute and vertex ranges of the shared layout do not overlap.
-#define DRAW_PUSH_OFFSET 16
+// PrCountPush (24 bytes) so the compute and vertex ranges of the shared layout do not overlap.
+#define DRAW_PUSH_OFFSET 32
 struct DrawPush {
   uint command_base;  // index of the draw's first DrawCommand (gl_DrawID counts from it)
   uint cascade;       // SHADOW_NONE, or the cascade being drawn
@@ -176,6 +189,7 @@ GPU_STRUCT Model {
   // κ (1/m) of the baked crown depths (Leaf::crown_depth, shaders/crown_light.h); 0: none
   // baked, leaf.vert then uses the exit distance from the bounding sphere with a default κ.
   float crown_extinction;
+  float pr_size0;            // projected size (px across the bounding sphere) of the tables' size 0
 };
 
 // One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.
@@ -269,7 +283,9 @@ struct PrCountPush {
   uint pixel_count;
   uint reference_offset;
   uint branch_offset;  // PR_NO_MASK: the test frame already holds the branches
-  uint result;         // index into the PrCounts array
+  uint result;         // index into the PrCounts array; with lattices, of its first of PR_SIZES
+  uint width;          // pixels per row (lattices)
+  uint lattices;       // 1: frames from SPEC_COVERAGE_LATTICES, counted per PR size
 };
 
 // Push constants of depth_pyramid.comp: one level's reduction.

@@ -1,8 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Precision/Recall pixel counts (Neubert 2012 §7.2.2): reference coverage (full detail) vs test
-// coverage (pruned), both RGBA8 frames copied into buffers; covered = red channel > 127.
+// coverage (pruned), both RGBA8 frames copied into buffers; covered = channel > 127. Frames
+// of the bake's lattice pipeline (push.lattices) are counted per PR size: size 0 from the red
+// channel of every pixel, size b >= 1 from the green channel of its lattice's pixels.
 #include "gpu_types.h"
+#include "prune_math.h"
 
 layout(local_size_x = PR_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COVERAGE_REFERENCE, std430) readonly buffer Reference { uint reference[]; };
@@ -10,24 +13,56 @@ layout(set = 0, binding = BINDING_COVERAGE_TEST, std430) readonly buffer Test { 
 layout(set = 0, binding = BINDING_PR_COUNTS, std430) buffer Counts { PrCounts pr[]; };
 layout(push_constant) uniform Push { PrCountPush push; };
 
-shared uint group_tp, group_fp, group_fn;
+shared uint group_tp[PR_SIZES], group_fp[PR_SIZES], group_fn[PR_SIZES];
 
+bool covered(uint rgba, uint channel) { return ((rgba >> (8u * channel)) & 0xffu) > 127u; }
+
+// Each invocation counts PR_PIXELS_PER_INVOCATION consecutive pixels in registers and adds
+// its totals to the group's once: shared atomics per pixel cost more than the comparison.
 void main() {
-  if (gl_LocalInvocationIndex == 0) { group_tp = 0; group_fp = 0; group_fn = 0; }
-  barrier();
-  uint i = gl_GlobalInvocationID.x;
-  if (i < push.pixel_count) {
-    bool relevant = (reference[push.reference_offset + i] & 0xffu) > 127u;
-    bool retrieved = (test[i] & 0xffu) > 127u;
-    if (push.branch_offset != PR_NO_MASK) retrieved = retrieved || (reference[push.branch_offset + i] & 0xffu) > 127u;
-    if (relevant && retrieved) atomicAdd(group_tp, 1);
-    else if (retrieved) atomicAdd(group_fp, 1);
-    else if (relevant) atomicAdd(group_fn, 1);
+  if (gl_LocalInvocationIndex < PR_SIZES) {
+    group_tp[gl_LocalInvocationIndex] = 0;
+    group_fp[gl_LocalInvocationIndex] = 0;
+    group_fn[gl_LocalInvocationIndex] = 0;
   }
   barrier();
-  if (gl_LocalInvocationIndex == 0) {
-    atomicAdd(pr[push.result].tp, group_tp);
-    atomicAdd(pr[push.result].fp, group_fp);
-    atomicAdd(pr[push.result].fn, group_fn);
+  uint tp[PR_SIZES], fp[PR_SIZES], fn[PR_SIZES];
+  for (uint s = 0; s < PR_SIZES; ++s) tp[s] = fp[s] = fn[s] = 0u;
+  uint first = gl_GlobalInvocationID.x * PR_PIXELS_PER_INVOCATION;
+  uint last = min(first + PR_PIXELS_PER_INVOCATION, push.pixel_count);
+  uint width = max(push.width, 1u);
+  uint x = first % width, y = first / width;
+  uint row_lattice = lattice_of_column(y);
+  for (uint i = first; i < last; ++i) {
+    uint ref = reference[push.reference_offset + i], tst = test[i];
+    uint branch = push.branch_offset != PR_NO_MASK ? reference[push.branch_offset + i] : 0u;
+    bool relevant = covered(ref, 0u), retrieved = covered(tst, 0u) || covered(branch, 0u);
+    tp[0] += relevant && retrieved ? 1u : 0u;
+    fp[0] += !relevant && retrieved ? 1u : 0u;
+    fn[0] += relevant && !retrieved ? 1u : 0u;
+    if (push.lattices != 0u && row_lattice < PR_SIZES && lattice_of_column(x) == row_lattice) {
+      relevant = covered(ref, 1u);
+      retrieved = covered(tst, 1u) || covered(branch, 1u);
+      tp[row_lattice] += relevant && retrieved ? 1u : 0u;
+      fp[row_lattice] += !relevant && retrieved ? 1u : 0u;
+      fn[row_lattice] += relevant && !retrieved ? 1u : 0u;
+    }
+    if (++x == width) {
+      x = 0u;
+      row_lattice = lattice_of_column(++y);
+    }
+  }
+  for (uint s = 0; s < PR_SIZES; ++s) {
+    if (tp[s] != 0u) atomicAdd(group_tp[s], tp[s]);
+    if (fp[s] != 0u) atomicAdd(group_fp[s], fp[s]);
+    if (fn[s] != 0u) atomicAdd(group_fn[s], fn[s]);
+  }
+  barrier();
+  uint sizes = push.lattices != 0u ? PR_SIZES : 1u;
+  if (gl_LocalInvocationIndex < sizes) {
+    uint s = gl_LocalInvocationIndex, at = push.result + s;
+    atomicAdd(pr[at].tp, group_tp[s]);
+    atomicAdd(pr[at].fp, group_fp[s]);
+    atomicAdd(pr[at].fn, group_fn[s]);
   }
 }

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+
+#include "gpu_types.h"
 namespace forest::prune {
 using uint = uint32_t;
 inline float clamp(float x, float lo, float hi) { return std::min(std::max(x, lo), hi); }
@@ -14,6 +16,8 @@ inline float ceil(float x) { return std::ceil(x); }
 inline float min(float a, float b) { return std::min(a, b); }
 inline uint min(uint a, uint b) { return std::min(a, b); }
 inline float max(float a, float b) { return std::max(a, b); }
+inline float sqrt(float x) { return std::sqrt(x); }
+inline float log2(float x) { return std::log2(x); }
 #define PRUNE_INLINE inline
 #else
 #define PRUNE_INLINE
@@ -34,6 +38,36 @@ PRUNE_INLINE float d_table_position(float d) {
   if (d < 0.1f) return d / 0.01f;
   return min(10.0f + (d - 0.1f) / 0.1f, 19.0f);
 }
+
+// Projected size of a sphere of radius r whose centre is `dist` from the camera, in pixels
+// across: 2·k·tan(asin(r/dist)), k = pixels per metre at distance 1 (FrameData.lod.x). A
+// camera inside the sphere sees it fill any frame.
+PRUNE_INLINE float projected_size(float radius, float dist, float pixels_per_meter) {
+  float under = dist * dist - radius * radius;
+  if (under <= 1e-12f * max(dist * dist, 1.0f)) return 1e9f;
+  return 2.0f * pixels_per_meter * radius / sqrt(under);
+}
+
+// Position of projected size p among a model's table sizes size0 / 2^b: integer part = the
+// larger sample, fraction = weight of the next smaller one; clamped to the sampled range.
+PRUNE_INLINE float size_table_position(float p, float size0) {
+  return clamp(log2(max(size0, 1e-6f) / max(p, 1e-6f)), 0.0f, float(PR_SIZES - 1));
+}
+
+// Bake coverage lattices (gpu_types.h, SPEC_COVERAGE_LATTICES): pixel column x belongs to the
+// lattice of size b = 1 + (trailing zero bits of x + 1), i.e. x ≡ 2^(b−1) − 1 (mod 2^b), and
+// b = 1 takes the even columns. A pixel is on lattice b when its row is too; 0: on none below
+// size 0.
+PRUNE_INLINE uint lattice_of_column(uint x) {
+  uint b = 1u;
+  for (uint v = x + 1u; (v & 1u) == 0u && b < 31u; v >>= 1u) b += 1u;
+  return b;
+}
+PRUNE_INLINE uint lattice_of_pixel(uint x, uint y) {
+  uint b = lattice_of_column(x);
+  return b == lattice_of_column(y) && b < uint(PR_SIZES) ? b : 0u;
+}
+PRUNE_INLINE uint lattice_offset(uint b) { return b <= 1u ? 0u : (1u << (b - 1u)) - 1u; }
 
 // Leaves drawn out of n at detail λ: k = ⌈λ·n⌉, at least one while λ > 0.
 PRUNE_INLINE uint leaf_prefix(float lambda, uint n) {

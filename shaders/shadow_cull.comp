@@ -34,7 +34,7 @@ void main() {
     if (!inside) continue;
     // frame.lod.x: pixels per metre at distance 1, so t metres are one pixel at t · lod.x.
     float lambda, area_scale;
-    tree_detail(m, max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x), lambda, area_scale);
+    tree_detail(m, radius, max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x), lambda, area_scale);
     uint k = leaf_prefix(lambda, m.leaf_count);
     uint lod = 0;
     for (uint e = 1; e < m.lod_count; ++e)

@@ -10,6 +10,7 @@
 
 layout(constant_id = SPEC_LEAF) const bool LEAF = false;
 layout(constant_id = SPEC_ALPHA_TO_COVERAGE) const bool ALPHA_TO_COVERAGE = false;
+layout(constant_id = SPEC_COVERAGE_LATTICES) const bool COVERAGE_LATTICES = false;
 
 layout(set = 0, binding = BINDING_LEAF_TEXTURES) uniform sampler2DArray leaf_textures;
 layout(set = 0, binding = BINDING_BARK_ALBEDO) uniform sampler2DArray bark_albedo;
@@ -42,7 +43,26 @@ vec3 perturb_normal(vec3 n, vec3 p, vec2 uv, vec3 t) {
   return normalize(mat3(du * s, -dv * s, n) * t);
 }
 
+// Bake coverage at every PR size in one render (gpu_types.h): red = covered at this
+// resolution, green = covered at the size of this pixel's lattice, 2^b times coarser, where
+// the texture would be read 2^b times coarser too (b mip levels up). Blended by MAX without
+// a depth test, so the attachment holds the union of all leaves at every size; branches
+// (another pipeline) write white. The cutoff is alpha >= 0.5 as in main(): sharpening by
+// fwidth moves no texel across it.
+void lattice_coverage() {
+  float lod = textureQueryLod(leaf_textures, in_uv_layer.xy).y;
+  float covered = texture(leaf_textures, in_uv_layer).a >= 0.5 ? 1.0 : 0.0;
+  uint b = lattice_of_pixel(uint(gl_FragCoord.x), uint(gl_FragCoord.y));
+  float coarse = b > 0u && textureLod(leaf_textures, in_uv_layer, lod + float(b)).a >= 0.5 ? 1.0 : 0.0;
+  if (covered == 0.0 && coarse == 0.0) discard;
+  out_color = vec4(covered, coarse, 0.0, 1.0);
+}
+
 void main() {
+  if (LEAF && COVERAGE_LATTICES) {
+    lattice_coverage();
+    return;
+  }
   vec3 albedo = in_albedo;
   float alpha = 1.0;
   if (LEAF) {

@@ -1,27 +1,83 @@
 // How much of a tree the camera's mode draws, shared by cull.comp and shadow_cull.comp so that
 // a pruned tree casts its pruned shadow: detail λ and leaf area scale s from the distance of
-// the tree's sphere centre to the LOD camera (Neubert 2012 ch7; Cook et al. 2007 for PRUNE_COOK).
+// the tree's sphere centre to the LOD camera and the sphere's projected size there (Neubert
+// 2012 ch7, its tables measured per size; Cook et al. 2007 for PRUNE_COOK).
 // Needs common.glsl.
 
-// s_opt(λ) from the model's table, linearly interpolated.
-float opt_area_scale(Model m, float lambda) {
-  float spos = clamp(lambda, 0.0, 1.0) * float(S_SAMPLES - 1);
-  uint sat = m.table_offset + uint(spos);
-  return mix(prune_tables[sat], prune_tables[min(sat + 1, m.table_offset + S_SAMPLES - 1)], fract(spos));
+// Tables of size block b (gpu_types.h): value i of the part at `part`.
+float table_value(Model m, uint b, uint part, uint i) {
+  return prune_tables[m.table_offset + b * TABLE_BLOCK + part + i];
 }
 
-void tree_detail(Model m, float camera_distance, out float lambda, out float area_scale) {
+// A part of S_SAMPLES values at λ, linearly interpolated, in block b.
+float lambda_table(Model m, uint b, uint part, float lambda) {
+  float pos = clamp(lambda, 0.0, 1.0) * float(S_SAMPLES - 1);
+  uint i = min(uint(pos), S_SAMPLES - 2);
+  return mix(table_value(m, b, part, i), table_value(m, b, part, i + 1), pos - float(i));
+}
+
+// The two size blocks around projected size p and the weight of the second.
+void size_blocks(Model m, float p, out uint b0, out uint b1, out float w) {
+  float pos = size_table_position(p, m.pr_size0);
+  b0 = min(uint(pos), PR_SIZES - 1);
+  b1 = min(b0 + 1, PR_SIZES - 1);
+  w = pos - float(b0);
+}
+
+// s_opt(λ, p), bilinear in λ and log2 p.
+float opt_area_scale(Model m, float lambda, float p) {
+  uint b0, b1;
+  float w;
+  size_blocks(m, p, b0, b1, w);
+  return mix(lambda_table(m, b0, 0, lambda), lambda_table(m, b1, 0, lambda), w);
+}
+
+// λ_opt(d, p), bilinear in the d table position and log2 p.
+float opt_lambda(Model m, float d, float p) {
+  uint b0, b1;
+  float w;
+  size_blocks(m, p, b0, b1, w);
+  float pos = d_table_position(d);
+  uint j = min(uint(pos), D_SAMPLES - 2);
+  float f = pos - float(j);
+  float l0 = mix(table_value(m, b0, TABLE_LAMBDA_OPT, j), table_value(m, b0, TABLE_LAMBDA_OPT, j + 1), f);
+  float l1 = mix(table_value(m, b1, TABLE_LAMBDA_OPT, j), table_value(m, b1, TABLE_LAMBDA_OPT, j + 1), f);
+  return mix(l0, l1, w);
+}
+
+// The smallest λ whose q_opt(λ, p) (bilinear) reaches `quality`: the first table sample that
+// does, interpolated linearly with the one before; 1 when none does.
+float target_lambda(Model m, float quality, float p) {
+  uint b0, b1;
+  float w;
+  size_blocks(m, p, b0, b1, w);
+  float previous = 0.0;  // q_opt(0) = 0: nothing drawn
+  for (uint i = 1; i < S_SAMPLES; ++i) {
+    float q = mix(table_value(m, b0, TABLE_Q_OPT, i), table_value(m, b1, TABLE_Q_OPT, i), w);
+    if (q >= quality) {
+      float t = q > previous ? clamp((quality - previous) / (q - previous), 0.0, 1.0) : 1.0;
+      return (float(i - 1) + t) / float(S_SAMPLES - 1);
+    }
+    previous = max(previous, q);
+  }
+  return 1.0;
+}
+
+// `radius`: the instance's bounding sphere (world metres); `camera_distance` to its centre.
+void tree_detail(Model m, float radius, float camera_distance, out float lambda, out float area_scale) {
   float d = clamp(camera_distance / frame.prune.x, 0.0, 1.0);
+  float p = projected_size(radius, camera_distance, frame.lod.x);
   lambda = 1.0;
   area_scale = 1.0;
   if (frame.prune_mode == PRUNE_COOK) {
     lambda = lambda_cook(d);
     area_scale = 1.0 / max(lambda, 1e-3);
   } else if (frame.prune_mode == PRUNE_OPT && m.has_tables != 0) {
-    float pos = d_table_position(d);
-    uint at = m.table_offset + S_SAMPLES + uint(pos);
-    lambda = mix(prune_tables[at], prune_tables[min(at + 1, m.table_offset + TABLE_FLOATS - 1)], fract(pos));
-    area_scale = opt_area_scale(m, lambda);
+    lambda = opt_lambda(m, d, p);
+    area_scale = opt_area_scale(m, lambda, p);
+  } else if (frame.prune_mode == PRUNE_TARGET && m.has_tables != 0) {
+    lambda = target_lambda(m, frame.prune.z, p);
+    area_scale = opt_area_scale(m, lambda, p);
   } else if (frame.prune_mode == PRUNE_FIXED) {
     lambda = frame.prune.z;
     area_scale = frame.prune.w;

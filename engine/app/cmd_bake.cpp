@@ -42,16 +42,20 @@ int run_bake(const BakeArgs& args) {
   BakeResult r = bake_model(model, args);
   save_glb(model, out);
   const PrTables& t = r.measurement.tables;
-  std::printf("baked %s -> %s: %zu leaves (%s order), hull %zu triangles, %d views at %d px; "
-              "hull+order %.1f s, PR %.1f s\n",
+  std::printf("baked %s -> %s: %zu leaves (%s order), hull %zu triangles, %d views at %d px (tree %g ... %g px "
+              "across); hull+order %.1f s, PR %.1f s\n",
               args.model.c_str(), out.c_str(), model.leaves.size(), args.priority.c_str(), r.hull_triangles,
-              t.views, t.resolution, r.hull_seconds, r.pr_seconds);
+              t.views, t.resolution, double(t.size0), double(pr_size(t.size0, PR_SIZES - 1)), r.hull_seconds,
+              r.pr_seconds);
   const PrBakeStats& st = r.measurement.stats;
   std::printf("PR: %u pruned renders in %u submits; references %.1f s, pruned renders + counts %.1f s\n", st.renders,
               st.submits, st.reference_seconds, st.compare_seconds);
-  std::printf("s_opt at lambda 0.1/0.2/0.5: %.2f %.2f %.2f (1/lambda: 10 5 2); Q there: %.3f %.3f %.3f\n",
-              double(t.s_opt[2]), double(t.s_opt[4]), double(t.s_opt[10]), double(t.q_opt[2]), double(t.q_opt[4]),
-              double(t.q_opt[10]));
+  for (uint32_t b = 0; b < PR_SIZES; ++b) {
+    const PrSizeTables& s = t.sizes[b];
+    std::printf("%5g px: s_opt at lambda 0.1/0.2/0.5: %.2f %.2f %.2f (1/lambda: 10 5 2); Q there: %.3f %.3f %.3f\n",
+                double(pr_size(t.size0, b)), double(s.s_opt[2]), double(s.s_opt[4]), double(s.s_opt[10]),
+                double(s.q_opt[2]), double(s.q_opt[4]), double(s.q_opt[10]));
+  }
   return 0;
 }
 

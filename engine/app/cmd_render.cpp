@@ -37,7 +37,7 @@ void print_pipeline_stats(const char* pass, const PipelineStats& s) {
               (unsigned long long)s.clip_primitives, (unsigned long long)s.fs_invocations);
 }
 
-// --width, --height, --mode, --view, --sun and --exposure over the scene file's settings.
+// --width, --height, --mode, --quality, --view, --sun and --exposure over the scene file's settings.
 void override_render_settings(SceneDesc& desc, const RenderArgs& args) {
   override_size(desc, args.width, args.height);
   if (args.sun) {  // azimuth from +x toward +z, elevation above the horizon, degrees
@@ -47,6 +47,7 @@ void override_render_settings(SceneDesc& desc, const RenderArgs& args) {
   if (args.exposure) desc.exposure = *args.exposure;
   if (!args.mode.empty())
     desc.prune_mode = *parse_prune_mode(args.mode);  // CLI11 checked it against prune_mode_names()
+  if (args.quality) desc.quality = *args.quality;
   if (!args.view.empty()) {
     desc.lambda_view = args.view == "lambda";
     desc.mask_view = args.view == "mask";

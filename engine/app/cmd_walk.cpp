@@ -75,6 +75,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_1: s.settings.prune_mode = PruneMode::full; break;
     case GLFW_KEY_2: s.settings.prune_mode = PruneMode::cook; break;
     case GLFW_KEY_3: s.settings.prune_mode = PruneMode::opt; break;
+    case GLFW_KEY_4: s.settings.prune_mode = PruneMode::target; break;
     case GLFW_KEY_O: s.settings.occlusion = !s.settings.occlusion; break;
     case GLFW_KEY_J: s.settings.shadows = !s.settings.shadows; break;
     case GLFW_KEY_L: s.settings.lambda_view = !s.settings.lambda_view; break;
@@ -134,7 +135,7 @@ std::vector<std::string> hud_lines(const WalkState& s, const FrameStats& st, con
       format("GPU ms: cull %.2f draw %.2f frame %.2f", st.cull_ms, st.draw_ms, st.frame_ms),
       format("trees %u/%u  branch tris %u", st.branch_draws, st.instances, st.branch_triangles),
       format("leaves %u  mean lambda %.3f", st.leaves_drawn, st.mean_lambda),
-      format("[1-3] prune %s  [L] %s  [F] wire %s", prune_mode_name(f.prune_mode), f.lambda_view ? "lambda" : "shaded",
+      format("[1-4] prune %s  [L] %s  [F] wire %s", prune_mode_name(f.prune_mode), f.lambda_view ? "lambda" : "shaded",
              f.wireframe ? "on" : "off"),
       format("[O] occlusion %s (%u culled)  [P] path %s", f.occlusion ? "on" : "off", st.occluded_instances,
              !s.playback_available ? "none" : s.playing ? "playing" : "stopped"),

@@ -78,7 +78,7 @@ struct BakeArgs {
   std::string priority = "combined";
   std::optional<uint64_t> seed;
   uint32_t views = 6;
-  uint32_t resolution = 256;
+  uint32_t resolution = 512;  // projected size of the PR tables' size 0
   std::string device;
 };
 int run_bake(const BakeArgs& args);
@@ -110,7 +110,8 @@ struct RenderArgs {
   std::optional<bool> shadows;    // --shadows on|off, overrides [render].shadows
   std::optional<glm::vec2> sun;   // --sun AZIMUTH,ELEVATION (degrees), overrides [sky].sun_direction
   std::optional<float> exposure;  // --exposure, overrides [render].exposure
-  std::string mode;               // --mode full|cook|opt, overrides [render].mode
+  std::string mode;               // --mode full|cook|opt|target, overrides [render].mode
+  std::optional<float> quality;   // --quality, overrides [render].quality (mode target)
   std::string view;               // --view shaded|lambda|mask, overrides [render].view
   std::string overlay;            // --overlay pyramid: the depth pyramid in the top-right quarter
   bool stats = false;
@@ -155,6 +156,7 @@ struct BenchArgs {
   uint32_t frames = 0;              // at most this many frames (0: the whole path)
   uint32_t every = 1;               // play every k-th frame of the path
   uint32_t pr_every = 10;           // P, R, Q at every k-th played frame (0: never)
+  uint32_t tree_pr = 0;             // at PR frames, also Q of this many trees, each alone (0: none)
   std::optional<uint32_t> occlusion_warmup;  // frames drawn before each played one (default: all between)
   std::string shadows;              // on | off | on,off: every mode with each (default: [render].shadows)
   uint32_t probe_instances = 64;    // throughput probe: sheets of 96 × 96 quads (0: no probe)

@@ -113,7 +113,9 @@ Command add_bake(CLI::App& cli) {
   cmd->add_option("--priority", args->priority, "Leaf order: random, density, orientation, combined, layered");
   cmd->add_option("--seed", args->seed, "Seed of the random parts (default: the model's)");
   cmd->add_option("--views", args->views, "Views averaged by the PR measurement")->check(CLI::Range(1, 64));
-  cmd->add_option("--resolution", args->resolution, "Pixels of each coverage render")->check(CLI::Range(kMinBakeResolution, kMaxBakeResolution));
+  cmd->add_option("--resolution", args->resolution,
+                  "Largest projected size of the PR tables, pixels across the bounding sphere (the tables hold it and 5 halvings)")
+      ->check(CLI::Range(kMinBakeResolution, kMaxPrSize0));
   cmd->add_option("--device", args->device, kDeviceHelp);
   return command(cmd, args, app::run_bake);
 }
@@ -167,6 +169,8 @@ Command add_render(CLI::App& cli) {
       ->check(CLI::Range(1e-3, 1e3));
   cmd->add_option("--mode", a.mode, "Prune mode (overrides [render].mode)")
       ->check(CLI::IsMember(std::vector<std::string>(prune_mode_names().begin(), prune_mode_names().end())));
+  cmd->add_option("--quality", a.quality, "PR quality Q every tree keeps in mode target (overrides [render].quality)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--view", a.view, "shaded, lambda (trees by detail level) or mask (coverage for forest compare)")
       ->check(CLI::IsMember({"shaded", "lambda", "mask"}));
   cmd->add_option("--overlay", a.overlay, "Debug overlay: pyramid (the depth pyramid occlusion tests against; needs occlusion on)")
@@ -231,11 +235,12 @@ Command add_bench(CLI::App& cli) {
   auto* cmd = cli.add_subcommand("bench", "Play a scene's camera path in several prune modes: per-frame CSV, JSON summary vs Cook, plots");
   cmd->add_option("scene", a.scene, "Scene file (TOML) with a [[path]]")->required();
   cmd->add_option("--path", a.path, "Camera path name (default: the first [[path]])");
-  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, opt, opt-combined, opt-occl");
+  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, cook-random, opt, opt-<order> (random, density, orientation, combined, layered), opt-occl, target");
   auto* frames_opt = cmd->add_option("--frames", a.frames, "At most N frames")->check(CLI::Range(1, 1000000));
   auto* every_opt = cmd->add_option("--every", a.every, "Play every k-th frame of the path")->check(CLI::Range(1, 1000000));
   frames_opt->excludes(every_opt);
   cmd->add_option("--pr-every", a.pr_every, "P, R, Q vs full detail at every k-th played frame (0: never)")->check(CLI::Range(0, 1000000));
+  cmd->add_option("--tree-pr", a.tree_pr, "At PR frames, also Q of N trees in view, each drawn alone against its own full-detail mask")->check(CLI::Range(0, 10000));
   cmd->add_option("--occlusion-warmup", a.occlusion_warmup,
                   "Occlusion modes: path frames drawn (unrecorded) before each played one (default: all in between)")
       ->check(CLI::Range(0, 1000000));

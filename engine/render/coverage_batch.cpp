@@ -4,8 +4,9 @@
 // queue round trip. Here the branches are drawn once per view into a mask and each pruned
 // render draws only its leaf prefix: in coverage mode every fragment writes the same white,
 // so the covered pixels of branches + leaves are exactly the union of the two masks, and
-// the counts equal those of render_reference + compare_with_reference (tested). Each
-// render goes through Renderer::record_scene, the recording path of frames.
+// the counts equal those of render_reference + compare_with_reference (tested). The leaves
+// go through the lattice pipeline (draw_pass.h), so each render is counted at every PR size.
+// Each render goes through Renderer::record_scene, the recording path of frames.
 #include <algorithm>
 #include <cstring>
 
@@ -37,6 +38,7 @@ void Renderer::record_coverage_render(VkCommandBuffer cmd, const FrameSlot& slot
   list.background = false;
   list.branches = branches;
   list.leaves = leaves;
+  list.lattices = true;
   record_scene(cmd, slot, list, false, false);
   vk::image_barrier(cmd, targets_.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -75,17 +77,17 @@ void Renderer::set_coverage_views(const std::vector<CameraDesc>& views) {
   slot.pending = false;
 }
 
-std::vector<PrResult> Renderer::compare_coverage(const std::vector<CoverageJob>& jobs) {
-  std::vector<PrResult> out(jobs.size());
+std::vector<PrSizes> Renderer::compare_coverage(const std::vector<CoverageJob>& jobs) {
+  std::vector<PrSizes> out(jobs.size());
   if (jobs.empty()) return out;
   for (const CoverageJob& j : jobs)
     if (j.view >= coverage_views_.size()) throw vk::VkFailure("compare_coverage: view without set_coverage_views");
   const uint32_t count = uint32_t(jobs.size());
-  reserve_coverage(1, count);
+  reserve_coverage(1, count * PR_SIZES);
   const uint32_t pixels = width_ * height_;
   FrameSlot& slot = next_slot();
   vk::begin_commands(slot.cmd);
-  vkCmdFillBuffer(slot.cmd, pr_count_.counts.buffer, 0, sizeof(gpu::PrCounts) * count, 0);
+  vkCmdFillBuffer(slot.cmd, pr_count_.counts.buffer, 0, sizeof(gpu::PrCounts) * count * PR_SIZES, 0);
   for (uint32_t i = 0; i < count; ++i) {
     const CoverageJob& j = jobs[i];
     FrameSettings test;
@@ -101,16 +103,21 @@ std::vector<PrResult> Renderer::compare_coverage(const std::vector<CoverageJob>&
                            &region);
     full_barrier(slot.cmd);
     vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &slot.set, 0, nullptr);
-    record_pr_count_pass(slot.cmd, pr_count_, layout_, {pixels, 2 * j.view * pixels, (2 * j.view + 1) * pixels, i});
+    record_pr_count_pass(slot.cmd, pr_count_, layout_,
+                         {pixels, 2 * j.view * pixels, (2 * j.view + 1) * pixels, i * PR_SIZES, width_, 1u});
     full_barrier(slot.cmd);
   }
-  record_pr_readback(slot.cmd, pr_count_, count);
+  record_pr_readback(slot.cmd, pr_count_, count * PR_SIZES);
   VK_CHECK(vkEndCommandBuffer(slot.cmd));
   submit(slot);
   wait(slot);
   slot.pending = false;
-  std::vector<gpu::PrCounts> counts = read_pr_counts(pr_count_, count);
-  for (uint32_t i = 0; i < count; ++i) out[i] = {counts[i].tp, counts[i].fp, counts[i].fn};
+  std::vector<gpu::PrCounts> counts = read_pr_counts(pr_count_, count * PR_SIZES);
+  for (uint32_t i = 0; i < count; ++i)
+    for (uint32_t b = 0; b < PR_SIZES; ++b) {
+      const gpu::PrCounts& c = counts[i * PR_SIZES + b];
+      out[i][b] = {c.tp, c.fp, c.fn};
+    }
   return out;
 }
 

@@ -127,6 +127,19 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& t, const DrawList
 DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples) {
   DrawPass p;
   p.fill = create_pipelines(ctx, layout, samples, false);
+  if (samples == VK_SAMPLE_COUNT_1_BIT) {
+    vk::GraphicsPipelineDesc d;
+    d.color_format = kColorFormat;
+    d.depth_format = kDepthFormat;
+    d.vertex = "leaf_vert";
+    d.fragment = "tree_frag";
+    d.cull = VK_CULL_MODE_NONE;
+    d.depth_test = false;
+    d.depth_write = false;
+    d.blend_max = true;
+    d.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_ALPHA_TO_COVERAGE, 0u}, {SPEC_COVERAGE_LATTICES, 1u}};
+    p.lattice_leaves = vk::create_graphics_pipeline(ctx, layout, d);
+  }
   if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true);
   return p;
 }
@@ -134,6 +147,8 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
 void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
   destroy_pipelines(ctx, p.fill);
   destroy_pipelines(ctx, p.wire);
+  vkDestroyPipeline(ctx.device, p.lattice_leaves, nullptr);
+  p.lattice_leaves = VK_NULL_HANDLE;
 }
 
 void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
@@ -164,7 +179,7 @@ void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayou
   }
   if (n > 0 && list.leaves) {  // up to two leaf draws per tree: the prefix and the occlusion tail
     push(n);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.leaves);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, list.lattices ? pass.lattice_leaves : p.leaves);
     vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(n) * stride, cull.counts.buffer,
                                   offsetof(gpu::DrawCounts, leaf_draws), 2 * n, stride);
   }

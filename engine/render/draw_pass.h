@@ -18,6 +18,9 @@ struct DrawPipelines {
 struct DrawPass {
   DrawPipelines fill;
   DrawPipelines wire;  // edges only; null where the device lacks fillModeNonSolid
+  // Bake coverage of the leaves at every PR size in one render (tree.frag, SPEC_COVERAGE_LATTICES):
+  // no depth test, MAX blending. Single-sampled renderers only.
+  VkPipeline lattice_leaves = VK_NULL_HANDLE;
 };
 
 inline constexpr Binding kDrawBindings[] = {
@@ -39,6 +42,7 @@ struct DrawList {
   bool wireframe = false;   // the wire pipelines (must exist)
   bool keep_depth = false;  // store the depth (or its resolve) for the depth pyramid
   bool shadows = false;     // the shadow pass runs first (shadow_pass.h); never in coverage frames
+  bool lattices = false;    // coverage frames of the bake: leaves through DrawPass::lattice_leaves
 };
 
 // Records the draw (set 0 bound to the graphics bind point by the caller). Before: the cull

@@ -64,7 +64,8 @@ void record_pr_count_pass(VkCommandBuffer cmd, const PrCountPass& p, VkPipelineL
                           const gpu::PrCountPush& push) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
   vkCmdPushConstants(cmd, layout, kPrCountPushRange.stageFlags, 0, sizeof(push), &push);
-  vkCmdDispatch(cmd, (push.pixel_count + PR_GROUP_SIZE - 1) / PR_GROUP_SIZE, 1, 1);
+  const uint32_t per_group = PR_GROUP_SIZE * PR_PIXELS_PER_INVOCATION;
+  vkCmdDispatch(cmd, (push.pixel_count + per_group - 1) / per_group, 1, 1);
 }
 
 void record_pr_readback(VkCommandBuffer cmd, const PrCountPass& p, uint32_t count) {

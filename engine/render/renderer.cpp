@@ -235,13 +235,14 @@ void Renderer::record_output(VkCommandBuffer cmd, Output output, VkDescriptorSet
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   // The depth pyramid may have bound its own sets since the cull pass.
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-  record_pr_count_pass(cmd, pr_count_, layout_, {width_ * height_, 0, PR_NO_MASK, 0});
+  record_pr_count_pass(cmd, pr_count_, layout_, {width_ * height_, 0, PR_NO_MASK, 0, width_, 0u});
   record_pr_readback(cmd, pr_count_, 1);
 }
 
 FrameSettings scene_frame_settings(const SceneDesc& desc) {
   FrameSettings s;
   s.prune_mode = desc.prune_mode;
+  s.quality = desc.quality;
   s.lambda_view = desc.lambda_view;
   s.mask = desc.mask_view;
   s.occlusion = desc.occlusion;
@@ -314,7 +315,7 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
   gpu::FrameData fd{};
   fd.view_proj = cm.view_proj;
   fd.inv_view_proj = glm::inverse(cm.view_proj);
-  fd.camera_pos = glm::vec4(cm.position, 1.0f);
+  fd.camera_pos = glm::vec4(cm.position, settings.solo_instance ? float(*settings.solo_instance + 1) : 0.0f);
   fd.sun_dir = glm::vec4(sky.sun_direction, sky.sun_intensity);
   fd.sky_zenith = glm::vec4(sky.zenith, 1.0f);
   fd.sky_horizon = glm::vec4(sky.horizon, 1.0f);
@@ -326,7 +327,9 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
                                ? float(height_) / camera.ortho_height * glm::distance(camera.position, camera.target)
                                : float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
   fd.lod = glm::vec4(pixels_per_meter, scene_.desc.lod_error_pixels, 0.0f, 0.0f);
-  fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition, settings.fixed_lambda, settings.fixed_scale);
+  fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition,
+                       settings.prune_mode == PruneMode::target ? settings.quality : settings.fixed_lambda,
+                       settings.fixed_scale);
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
   fd.prune_mode = uint32_t(settings.prune_mode);
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u) |

@@ -6,6 +6,7 @@
 // of what the passes declare (descriptor_table.h). Per-frame CPU work is O(1) in the number
 // of tree instances. Two frames in flight (render_async, for `forest walk`).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -39,6 +40,7 @@ struct FrameSettings {
   PruneMode prune_mode = PruneMode::full;
   float fixed_lambda = 1.0f;  // PruneMode::fixed
   float fixed_scale = 1.0f;   // PruneMode::fixed: leaf area scale s
+  float quality = 0.95f;      // PruneMode::target: the Q each tree keeps at its projected size
   bool mask = false;          // coverage only: trees white on black, no sky or terrain
   bool branches = true;       // false: leaves alone, no bark (leaf coverage measurements)
   bool lambda_view = false;
@@ -62,6 +64,9 @@ struct FrameSettings {
   bool shadows = false;
   // Shows the shadow map's sun visibility as grey on terrain and trees (tests, debugging).
   bool shadow_view = false;
+  // Draw this instance alone (its index in Scene::instances), every other tree culled: the
+  // per-tree PR of `forest bench --tree-pr` (each tree against its own full-detail mask).
+  std::optional<uint32_t> solo_instance;
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -102,6 +107,10 @@ struct PrResult {
     return *this;
   }
 };
+
+// Counts of one coverage render at each PR size: [0] at the render's resolution, [b] at 2^-b
+// of it (the lattices of gpu_types.h).
+using PrSizes = std::array<PrResult, PR_SIZES>;
 
 // One pruned coverage render of a batch: the model at detail λ with leaf area scale s, seen
 // from one of the views given to Renderer::set_coverage_views.
@@ -144,10 +153,11 @@ class Renderer {
   // Batched coverage comparisons (PR bake, single-sampled renderers only; coverage_batch.cpp).
   // Stores per view the full-detail coverage and the branch-only coverage on the GPU (one
   // submit); compare_coverage then draws only the leaf prefix of each job, ORs in its view's
-  // branch mask and counts against its reference — the same counts as render_reference +
-  // compare_with_reference, without redrawing the branches — all jobs in one submit.
+  // branch mask and counts against its reference — at size 0 the same counts as
+  // render_reference + compare_with_reference, without redrawing the branches — all jobs in
+  // one submit. Every render also counts the coverage at the smaller PR sizes (lattices).
   void set_coverage_views(const std::vector<CameraDesc>& views);
-  std::vector<PrResult> compare_coverage(const std::vector<CoverageJob>& jobs);
+  std::vector<PrSizes> compare_coverage(const std::vector<CoverageJob>& jobs);
 
   // Occlusion feedback state of every instance, read back from the GPU (tests, tools).
   std::vector<gpu::InstanceState> instance_states();

@@ -80,13 +80,18 @@ void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
 void add_bake_data(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
   if (const std::optional<PrTables>& t = tm.bake.pr_tables) {
     // Validated when the asset was read; sizes checked again here as they bound GPU reads.
-    if (t->s_opt.size() != S_SAMPLES || t->lambda_opt.size() != D_SAMPLES)
-      throw std::invalid_argument("upload_scene: PR tables of " + std::to_string(t->s_opt.size()) + " s_opt and " +
-                                  std::to_string(t->lambda_opt.size()) + " lambda_opt values");
+    bool sized = t->sizes.size() == PR_SIZES;
+    for (const PrSizeTables& b : t->sizes)
+      sized = sized && b.s_opt.size() == S_SAMPLES && b.q_opt.size() == S_SAMPLES && b.lambda_opt.size() == D_SAMPLES;
+    if (!sized) throw std::invalid_argument("upload_scene: PR tables of the wrong shape");
     m.has_tables = 1;
     m.table_offset = uint32_t(a.tables.size());
-    a.tables.insert(a.tables.end(), t->s_opt.begin(), t->s_opt.end());
-    a.tables.insert(a.tables.end(), t->lambda_opt.begin(), t->lambda_opt.end());
+    m.pr_size0 = t->size0;
+    for (const PrSizeTables& b : t->sizes) {  // one TABLE_BLOCK per size (gpu_types.h)
+      a.tables.insert(a.tables.end(), b.s_opt.begin(), b.s_opt.end());
+      a.tables.insert(a.tables.end(), b.q_opt.begin(), b.q_opt.end());
+      a.tables.insert(a.tables.end(), b.lambda_opt.begin(), b.lambda_opt.end());
+    }
   }
   OcclusionSamples occ = occlusion_samples(tm);
   m.sample_offset = uint32_t(a.hull_samples.size());

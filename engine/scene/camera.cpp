@@ -30,6 +30,12 @@ CameraMatrices camera_matrices(const CameraDesc& camera, float aspect) {
     m.proj[2][3] = -1.0f;
     m.proj[3][2] = camera.near;
   }
+  if (camera.ndc_offset != glm::vec2(0.0f)) {  // clip += offset · w: the same shift in NDC at every depth
+    glm::mat4 shift(1.0f);
+    shift[3][0] = camera.ndc_offset.x;
+    shift[3][1] = camera.ndc_offset.y;
+    m.proj = shift * m.proj;
+  }
   m.view_proj = m.proj * m.view;
 
   // Gribb-Hartmann on the rows of view_proj (Vulkan clip: -w<=x,y<=w, 0<=z<=w).

@@ -3,8 +3,8 @@
 namespace forest {
 
 namespace {
-const std::string kNames[] = {"full", "cook", "opt"};
-constexpr PruneMode kModes[] = {PruneMode::full, PruneMode::cook, PruneMode::opt};
+const std::string kNames[] = {"full", "cook", "opt", "target"};
+constexpr PruneMode kModes[] = {PruneMode::full, PruneMode::cook, PruneMode::opt, PruneMode::target};
 }  // namespace
 
 std::span<const std::string> prune_mode_names() { return kNames; }

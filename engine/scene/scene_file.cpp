@@ -31,7 +31,7 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 
 void read_render(const TomlTable& t, SceneDesc& s) {
   t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view",
-                "occlusion", "shadows", "shadow_distance", "shadow_resolution", "exposure"});
+                "occlusion", "shadows", "shadow_distance", "shadow_resolution", "exposure", "quality"});
   s.width = uint32_t(t.integer("width", s.width, kMinFrameSide, kMaxFrameSide));
   s.height = uint32_t(t.integer("height", s.height, kMinFrameSide, kMaxFrameSide));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
@@ -40,6 +40,7 @@ void read_render(const TomlTable& t, SceneDesc& s) {
   s.prune_mode = *parse_prune_mode(t.choice("mode", "full", prune_mode_names()));
   s.prune_distance = float(t.number("prune_distance", s.prune_distance, 1e-2, kBig));
   s.transition = float(t.number("transition", s.transition, 0.0, 1.0));
+  s.quality = float(t.number("quality", s.quality, 0.0, 1.0));
   std::string view = t.choice("view", "shaded", {"shaded", "lambda", "mask"});
   s.lambda_view = view == "lambda";
   s.mask_view = view == "mask";
@@ -93,9 +94,9 @@ void read_terrain(const TomlTable& t, TerrainDesc& d, const std::filesystem::pat
 
 void read_bake(const TomlTable& t, BakeDesc& b) {
   t.check_keys({"priority", "views", "resolution"});
-  b.priority = t.choice("priority", b.priority, {"random", "density", "orientation", "combined"});
+  b.priority = t.choice("priority", b.priority, {"random", "density", "orientation", "combined", "layered"});
   b.views = uint32_t(t.integer("views", b.views, 1, 64));
-  b.resolution = uint32_t(t.integer("resolution", b.resolution, kMinBakeResolution, kMaxBakeResolution));
+  b.resolution = uint32_t(t.integer("resolution", b.resolution, kMinBakeResolution, kMaxPrSize0));
 }
 
 CameraPath read_path(const TomlTable& t) {

@@ -24,6 +24,9 @@ struct CameraDesc {
   // from `near` (1) to `far` (0); fov_deg is then unused. Set in code by measurements
   // (engine/tools/measure/), not read from scene files.
   float ortho_height = 0.0f;
+  // Shift of the image in normalized device coordinates (x right, y down; 2 = the frame's
+  // width or height): sub-pixel offsets for measurements, not read from scene files.
+  glm::vec2 ndc_offset{0.0f};
 };
 
 // One keyframe of a camera path ([[path.key]]).
@@ -70,7 +73,7 @@ struct TerrainDesc {
 struct BakeDesc {
   std::string priority = "combined";
   uint32_t views = 6;
-  uint32_t resolution = 256;
+  uint32_t resolution = 512;  // projected size of the PR tables' size 0 (px across the bounding sphere)
 };
 
 struct SpeciesDesc {
@@ -110,6 +113,7 @@ struct SceneDesc {
   float lod_error_pixels = 1.0f;  // branch LOD: allowed projected error; 0 = always LOD0
   PruneMode prune_mode = PruneMode::full;  // [render] mode
   float prune_distance = 400.0f;  // meters at which the normalized distance d reaches 1
+  float quality = 0.95f;          // [render] quality: the PR quality Q mode "target" keeps per tree
   float transition = 0.1f;        // Cook's transition band t: fraction of the prefix that shrinks
   bool lambda_view = false;       // [render] view = "lambda": color trees by detail level
   bool mask_view = false;         // [render] view = "mask": coverage only (white trees on black), for forest compare

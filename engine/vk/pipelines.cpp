@@ -43,6 +43,23 @@ VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayout set,
   return layout;
 }
 
+namespace {
+
+VkPipelineColorBlendAttachmentState blend_state(const GraphicsPipelineDesc& desc) {
+  VkPipelineColorBlendAttachmentState b{};
+  b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                     (desc.write_alpha ? VkColorComponentFlags(VK_COLOR_COMPONENT_A_BIT) : 0u);
+  if (desc.blend_max) {
+    b.blendEnable = VK_TRUE;
+    b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_MAX;
+  }
+  return b;
+}
+
+}  // namespace
+
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc) {
   VkShaderModule vs = create_shader(ctx, desc.vertex);
   VkShaderModule fs = desc.fragment.empty() ? VK_NULL_HANDLE : create_shader(ctx, desc.fragment);
@@ -88,9 +105,7 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   depth.depthTestEnable = desc.depth_test;
   depth.depthWriteEnable = desc.depth_write;
   depth.depthCompareOp = desc.depth_compare;
-  VkPipelineColorBlendAttachmentState blend_attachment{};
-  blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                                    (desc.write_alpha ? VkColorComponentFlags(VK_COLOR_COMPONENT_A_BIT) : 0u);
+  VkPipelineColorBlendAttachmentState blend_attachment = blend_state(desc);
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   const bool color = desc.color_format != VK_FORMAT_UNDEFINED;
   blend.attachmentCount = color ? 1 : 0;

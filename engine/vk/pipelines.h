@@ -38,6 +38,7 @@ struct GraphicsPipelineDesc {
   // false: the pipeline leaves the color attachment's alpha as it is (its fragment alpha only
   // drives alpha-to-coverage, which the write mask does not affect).
   bool write_alpha = true;
+  bool blend_max = false;  // colour = max(fragment, attachment): unions of coverage masks
   VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;  // LINE needs Context::fill_mode_non_solid
   VkCompareOp depth_compare = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z: 1 near, 0 far
   // Depth bias (shadow maps): constant in units of the format's resolution, and per unit slope.

@@ -96,18 +96,19 @@ struct BakeReader {
   }
 
   std::vector<PrPoint> pr_samples(const nlohmann::json& list) const {
-    if (!list.is_array()) fail("pr_samples", "expected an array of [lambda, s, precision, recall]");
+    if (!list.is_array()) fail("pr_samples", "expected an array of [lambda, s, size, precision, recall]");
     std::vector<PrPoint> out;
     out.reserve(list.size());
     for (size_t i = 0; i < list.size(); ++i) {
       const std::string at = "pr_samples[" + std::to_string(i) + "]";
       const nlohmann::json& v = list[i];
-      if (!v.is_array() || v.size() != 4) fail(at, "expected [lambda, s, precision, recall] numbers");
+      if (!v.is_array() || v.size() != 5) fail(at, "expected [lambda, s, size, precision, recall] numbers");
       PrPoint p;
       p.lambda = float(number(v[0], at, 0.0, 1.0));
       p.scale = float(number(v[1], at, 0.0, 1e4));
-      p.precision = number(v[2], at, 0.0, 1.0);
-      p.recall = number(v[3], at, 0.0, 1.0);
+      p.size = float(number(v[2], at, 0.0, 65536.0));
+      p.precision = number(v[3], at, 0.0, 1.0);
+      p.recall = number(v[4], at, 0.0, 1.0);
       out.push_back(p);
     }
     return out;
@@ -134,7 +135,7 @@ void bake_to_json(const BakeData& bake, nlohmann::json& forest) {
   if (bake.pr_tables) {
     forest["pr_tables"] = to_json(*bake.pr_tables);
     nlohmann::json samples = nlohmann::json::array();  // the PR diagram behind the tables
-    for (const PrPoint& p : bake.pr_samples) samples.push_back({p.lambda, p.scale, p.precision, p.recall});
+    for (const PrPoint& p : bake.pr_samples) samples.push_back({p.lambda, p.scale, p.size, p.precision, p.recall});
     forest["pr_samples"] = std::move(samples);
     forest["baked"] = true;
   }

@@ -26,10 +26,10 @@ struct HullSamples {
   float radius = 0.0f;             // hull_radius: metaball radius r, metres
 };
 
-// One measured point of the PR diagram: detail λ, leaf area scale s, precision and recall of
-// the pixel counts summed over the views.
+// One measured point of the PR diagram: detail λ, leaf area scale s, projected size (pixels
+// across the bounding sphere), precision and recall of the pixel counts summed over the views.
 struct PrPoint {
-  float lambda = 0.0f, scale = 0.0f;
+  float lambda = 0.0f, scale = 0.0f, size = 0.0f;
   double precision = 0.0, recall = 0.0;
 };
 

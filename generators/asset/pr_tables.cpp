@@ -1,5 +1,6 @@
 #include "generators/asset/pr_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -25,15 +26,34 @@ std::vector<float> derived(uint32_t n, float (*f)(uint32_t)) {
 float pr_lambda(uint32_t i) { return float(i) / float(S_SAMPLES - 1); }
 float pr_d(uint32_t j) { return prune::d_sample(j); }
 float pr_lambda_cook(uint32_t j) { return prune::lambda_cook(prune::d_sample(j)); }
+float pr_size(float size0, uint32_t b) { return std::ldexp(size0, -int(b)); }
+
+PrTables pr_tables_at_every_size(const PrSizeTables& one, float size0) {
+  PrTables t;
+  t.size0 = size0;
+  t.sizes.assign(PR_SIZES, one);
+  return t;
+}
 
 nlohmann::json to_json(const PrTables& t) {
-  return {{"lambda", derived(S_SAMPLES, pr_lambda)},
-          {"s_opt", t.s_opt},
-          {"q_opt", t.q_opt},
-          {"q_inverse", t.q_inverse},
+  nlohmann::json per_size = nlohmann::json::array();
+  std::vector<float> sizes;
+  for (uint32_t b = 0; b < t.sizes.size(); ++b) {
+    const PrSizeTables& s = t.sizes[b];
+    sizes.push_back(pr_size(t.size0, b));
+    per_size.push_back({{"size", sizes.back()},
+                        {"s_opt", s.s_opt},
+                        {"q_opt", s.q_opt},
+                        {"q_inverse", s.q_inverse},
+                        {"lambda_opt", s.lambda_opt}});
+  }
+  return {{"format", kPrTablesFormat},
+          {"lambda", derived(S_SAMPLES, pr_lambda)},
           {"d", derived(D_SAMPLES, pr_d)},
-          {"lambda_opt", t.lambda_opt},
           {"lambda_cook", derived(D_SAMPLES, pr_lambda_cook)},
+          {"size0", t.size0},
+          {"sizes", sizes},
+          {"per_size", per_size},
           {"priority", t.priority},
           {"views", t.views},
           {"resolution", t.resolution}};
@@ -44,36 +64,63 @@ PrTables pr_tables_from_json(const nlohmann::json& j, const std::string& name) {
     throw InputError(name, 0, "extras.forest.pr_tables" + (key.empty() ? "" : "." + key), what);
   };
   if (!j.is_object()) fail("", "expected an object");
-  auto floats = [&](const char* key, size_t n, float lo, float hi) {
-    if (!j.contains(key) || !j[key].is_array() || j[key].size() != n)
-      fail(key, "expected an array of " + std::to_string(n) + " numbers");
+  if (!j.contains("format"))
+    fail("format", "missing: PR tables of format 1 (measured at one size); generate the model again and bake it "
+                   "(forest generate, forest bake; scenes re-bake their species by themselves)");
+  if (!j["format"].is_number_integer() || j["format"].get<int64_t>() != kPrTablesFormat)
+    fail("format", "expected " + std::to_string(kPrTablesFormat) + "; generate the model again and bake it (forest generate, forest bake)");
+  // o[key], named `label` in messages.
+  auto floats_of = [&](const nlohmann::json& o, const std::string& key, const std::string& label, size_t n, float lo,
+                       float hi) {
+    if (!o.contains(key) || !o[key].is_array() || o[key].size() != n)
+      fail(label, "expected an array of " + std::to_string(n) + " numbers");
     std::vector<float> v;
-    for (const auto& x : j[key]) {
-      if (!x.is_number()) fail(key, "expected numbers");
+    for (const auto& x : o[key]) {
+      if (!x.is_number()) fail(label, "expected numbers");
       double f = x.get<double>();  // range-checked before narrowing: a huge double is no float
-      if (!std::isfinite(f) || f < lo || f > hi) fail(key, "value out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      if (!std::isfinite(f) || f < lo || f > hi)
+        fail(label, "value out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
       v.push_back(float(f));
     }
     return v;
   };
+  auto floats = [&](const char* key, size_t n, float lo, float hi) { return floats_of(j, key, key, n, lo, hi); };
   // Derived keys: present, of the right size, and equal to their derivation.
-  auto check_derived = [&](const char* key, uint32_t n, float (*f)(uint32_t), const char* formula) {
-    std::vector<float> v = floats(key, n, 0.0f, 1.0f);
-    for (uint32_t i = 0; i < n; ++i)
-      if (!(std::abs(double(v[i]) - double(f(i))) <= kDerivedTolerance)) {
+  auto check_derived = [&](const std::string& key, const std::vector<float>& v, const std::vector<float>& want,
+                           const char* formula) {
+    for (size_t i = 0; i < v.size(); ++i)
+      if (!(std::abs(double(v[i]) - double(want[i])) <= kDerivedTolerance * std::max(1.0, std::abs(double(want[i]))))) {
         char what[160];
-        std::snprintf(what, sizeof(what), "%s[%u] = %.9g, but %s gives %.9g", key, i, double(v[i]), formula, double(f(i)));
+        std::snprintf(what, sizeof(what), "%s[%zu] = %.9g, but %s gives %.9g", key.c_str(), i, double(v[i]), formula,
+                      double(want[i]));
         fail(key, what);
       }
   };
   PrTables t;
-  check_derived("lambda", S_SAMPLES, pr_lambda, "i / (S_SAMPLES - 1)");
-  t.s_opt = floats("s_opt", S_SAMPLES, 0.0f, 1e4f);
-  t.q_opt = floats("q_opt", S_SAMPLES, -1.0f, 1.0f);
-  t.q_inverse = floats("q_inverse", S_SAMPLES, -1.0f, 1.0f);
-  check_derived("d", D_SAMPLES, pr_d, "d_sample(j)");
-  t.lambda_opt = floats("lambda_opt", D_SAMPLES, 0.0f, 1.0f);
-  check_derived("lambda_cook", D_SAMPLES, pr_lambda_cook, "(1 - d_sample(j))^2");
+  check_derived("lambda", floats("lambda", S_SAMPLES, 0.0f, 1.0f), derived(S_SAMPLES, pr_lambda), "i / (S_SAMPLES - 1)");
+  check_derived("d", floats("d", D_SAMPLES, 0.0f, 1.0f), derived(D_SAMPLES, pr_d), "d_sample(j)");
+  check_derived("lambda_cook", floats("lambda_cook", D_SAMPLES, 0.0f, 1.0f), derived(D_SAMPLES, pr_lambda_cook),
+                "(1 - d_sample(j))^2");
+  if (!j.contains("size0") || !j["size0"].is_number() || !(j["size0"].get<double>() >= 1.0) ||
+      !(j["size0"].get<double>() <= 65536.0))
+    fail("size0", "expected a number of pixels in [1, 65536]");
+  t.size0 = j["size0"].get<float>();
+  std::vector<float> want_sizes;
+  for (uint32_t b = 0; b < PR_SIZES; ++b) want_sizes.push_back(pr_size(t.size0, b));
+  check_derived("sizes", floats("sizes", PR_SIZES, 0.0f, 65536.0f), want_sizes, "size0 / 2^b");
+  if (!j.contains("per_size") || !j["per_size"].is_array() || j["per_size"].size() != PR_SIZES)
+    fail("per_size", "expected an array of " + std::to_string(PR_SIZES) + " objects");
+  for (uint32_t b = 0; b < PR_SIZES; ++b) {
+    const nlohmann::json& o = j["per_size"][b];
+    const std::string at = "per_size[" + std::to_string(b) + "]";
+    if (!o.is_object()) fail(at, "expected an object");
+    PrSizeTables s;
+    s.s_opt = floats_of(o, "s_opt", at + ".s_opt", S_SAMPLES, 0.0f, 1e4f);
+    s.q_opt = floats_of(o, "q_opt", at + ".q_opt", S_SAMPLES, -1.0f, 1.0f);
+    s.q_inverse = floats_of(o, "q_inverse", at + ".q_inverse", S_SAMPLES, -1.0f, 1.0f);
+    s.lambda_opt = floats_of(o, "lambda_opt", at + ".lambda_opt", D_SAMPLES, 0.0f, 1.0f);
+    t.sizes.push_back(std::move(s));
+  }
   if (j.contains("priority")) {
     if (!j["priority"].is_string()) fail("priority", "expected a string");
     t.priority = j["priority"].get<std::string>();

@@ -1,10 +1,14 @@
-// Per-model pruning tables measured with Precision/Recall (Neubert 2012 §7.2): s_opt(λ) at
-// equidistant λ and λ_opt(d) at the distances of prune::d_sample(), plus the quality values
-// behind them. Stored in extras.forest.pr_tables of a baked .glb.
+// Per-model pruning tables measured with Precision/Recall (Neubert 2012 §7.2), per projected
+// size: for each of PR_SIZES sizes p_b = size0 / 2^b (pixels across the bounding sphere),
+// s_opt(λ) at equidistant λ and λ_opt(d) at the distances of prune::d_sample(), plus the
+// quality values behind them. Q(λ, s) depends on the size at which a tree is seen (sub-pixel
+// leaves merge), so the run time looks the tables up by the instance's projected size too.
+// Stored in extras.forest.pr_tables of a baked .glb (format kPrTablesFormat).
 //
-// The sample positions are not stored here: λ_i = pr_lambda(i), d_j = pr_d(j) and
-// λ_Cook(d_j) = pr_lambda_cook(j) follow from the index. The asset still carries them (keys
-// lambda, d, lambda_cook, for people and plots); the reader checks them against these.
+// The sample positions are not stored here: λ_i = pr_lambda(i), d_j = pr_d(j),
+// λ_Cook(d_j) = pr_lambda_cook(j) and p_b = pr_size(size0, b) follow from the index. The
+// asset still carries them (keys lambda, d, lambda_cook, sizes, for people and plots); the
+// reader checks them against these.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -16,25 +20,43 @@
 
 namespace forest {
 
+// 1: one size (resolution); 2: per projected size. Older formats are refused on load.
+inline constexpr int kPrTablesFormat = 2;
+
+// "Equal quality": Q ≥ Q_Cook − this, wherever a mode is judged against Cook et al. (the bench
+// summary, the scene tests). PR counts are exact, but a frame's Q moves by about 0.001 with
+// the sub-pixel placement of leaves; a real loss of quality is larger.
+inline constexpr double kEqualQualityTolerance = 0.002;
+
+// The tables of one projected size.
+struct PrSizeTables {
+  std::vector<float> s_opt;       // S_SAMPLES: area scale maximizing Q at each λ (7.6)
+  std::vector<float> q_opt;       // S_SAMPLES: Q(λ, s_opt(λ)) (7.7)
+  std::vector<float> q_inverse;   // S_SAMPLES: Q(λ, 1/λ), Cook's area preservation
+  std::vector<float> lambda_opt;  // D_SAMPLES: smallest λ with Q(λ, s_opt) >= Q(λ_Cook(d), 1/λ_Cook)
+};
+
 struct PrTables {
-  std::vector<float> s_opt;        // S_SAMPLES: area scale maximizing Q at each λ (7.6)
-  std::vector<float> q_opt;        // S_SAMPLES: Q(λ, s_opt(λ)) (7.7)
-  std::vector<float> q_inverse;    // S_SAMPLES: Q(λ, 1/λ), Cook's area preservation
-  std::vector<float> lambda_opt;   // D_SAMPLES: smallest λ with Q(λ, s_opt) >= Q(λ_Cook(d), 1/λ_Cook)
-  std::string priority;            // leaf order the tables were measured with ("" = not recorded)
-  int views = 0;                   // views averaged
-  int resolution = 0;              // pixels of each coverage render
+  std::vector<PrSizeTables> sizes;  // PR_SIZES: [b] measured at pr_size(size0, b)
+  float size0 = 0.0f;               // pixels across the bounding sphere at sizes[0]
+  std::string priority;             // leaf order the tables were measured with ("" = not recorded)
+  int views = 0;                    // views averaged
+  int resolution = 0;               // pixels of each (square) coverage render at sizes[0]
 };
 
 float pr_lambda(uint32_t i);       // λ of s_opt sample i < S_SAMPLES: i / (S_SAMPLES − 1)
 float pr_d(uint32_t j);            // normalized distance of λ_opt sample j < D_SAMPLES: prune::d_sample(j)
 float pr_lambda_cook(uint32_t j);  // Cook's λ at pr_d(j): (1 − d)²
+float pr_size(float size0, uint32_t b);  // projected size of table size b < PR_SIZES: size0 / 2^b
 
-// extras.forest.pr_tables, derived keys (lambda, d, lambda_cook) included.
+// Tables holding `one` at every size (hand-made tables of tests and tools).
+PrTables pr_tables_at_every_size(const PrSizeTables& one, float size0 = 512.0f);
+
+// extras.forest.pr_tables, derived keys (lambda, d, lambda_cook, sizes) and format included.
 nlohmann::json to_json(const PrTables& t);
 // Reads an extras.forest.pr_tables object; InputError naming `name` and
-// extras.forest.pr_tables.<key> for a wrong size, a non-number, a value out of range or a
-// derived value that disagrees with its derivation.
+// extras.forest.pr_tables.<key> for an older format, a wrong size, a non-number, a value out
+// of range or a derived value that disagrees with its derivation.
 PrTables pr_tables_from_json(const nlohmann::json& j, const std::string& name);
 
 }  // namespace forest

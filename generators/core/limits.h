@@ -29,6 +29,9 @@ inline constexpr int kMaxImageSide = 8192;       // input masks and heightmaps, 
 inline constexpr int kMaxGlbImageSide = 4096;    // a texture inside a .glb, per side
 inline constexpr uint32_t kMinBakeResolution = 32;    // pixels of a PR coverage render or preview view
 inline constexpr uint32_t kMaxBakeResolution = 4096;
+// [bake] resolution, bake --resolution: the PR tables' largest projected size (px across the
+// bounding sphere); the coverage references of a bake hold 2 × views renders of about its square.
+inline constexpr uint32_t kMaxPrSize0 = 2048;
 inline constexpr uint32_t kMaxProbeInstances = 4096;  // forest bench --probe-instances
 inline constexpr size_t kMaxHullSamples = 65536;      // extras.forest.hull_samples of one model
 

@@ -29,7 +29,7 @@ const std::string kScene =
 
 // Pruning tables that keep λ = 1 − d and grow leaves as they drop (s = 1/λ, capped).
 PrTables ramp_tables() {
-  PrTables t;
+  PrSizeTables t;
   for (int i = 0; i < S_SAMPLES; ++i) {
     float l = float(i) / float(S_SAMPLES - 1);
     t.s_opt.push_back(l > 0.1f ? 1.0f / l : 10.0f);
@@ -40,7 +40,7 @@ PrTables ramp_tables() {
     float d = float(i) / float(D_SAMPLES - 1);
     t.lambda_opt.push_back(1.0f - d);
   }
-  return t;
+  return pr_tables_at_every_size(t);
 }
 
 Scene pruned_scene() {

@@ -59,7 +59,7 @@ TEST(Regression, PrunedViewsKeepTheirQuality) {
     for (const Check& c : checks) {
       SCOPED_TRACE(c.scene + " " + c.view + " " + c.mode);
       auto mode = bench_mode(c.mode);
-      ASSERT_TRUE(mode && c.mode != "full" && !mode->combined_priority) << "unknown or unsupported mode";
+      ASSERT_TRUE(mode && c.mode != "full" && mode->priority.empty()) << "unknown or unsupported mode";
       if (!scenes.count(c.scene)) {
         SceneBuildOptions build;
         build.species = cached_species_source({kBinary / "test-cache", &ctx, {}});

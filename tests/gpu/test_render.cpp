@@ -303,12 +303,12 @@ TEST_F(GpuTest, CookLeafCountsMatchCpuReference) {
 TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   // A model whose tables say λ = 1 and s = 1 everywhere must render exactly like `full`.
   TreeModel m = broadleaf();
-  PrTables t;
+  PrSizeTables t;
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
   t.lambda_opt.assign(D_SAMPLES, 1.0f);
-  m.bake.pr_tables = t;
+  m.bake.pr_tables = pr_tables_at_every_size(t);
   std::vector<TreeDesc> trees = {{0, 0.0f, 0.0f, 1.0f, 0.0f}, {0, 5.0f, 20.0f, 1.0f, 30.0f}};
   Scene s = single_model_scene(m, trees);
   Renderer r(ctx_, s, 160, 120, 1);
@@ -320,7 +320,7 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   EXPECT_EQ(a.rgba, b.rgba);
   // And tables that halve λ draw half the leaves.
   t.lambda_opt.assign(D_SAMPLES, 0.5f);
-  m.bake.pr_tables = t;
+  m.bake.pr_tables = pr_tables_at_every_size(t);
   Scene half = single_model_scene(m, trees);
   Renderer rh(ctx_, half, 160, 120, 1);
   EXPECT_EQ(rh.render(half.desc.camera, nullptr, opt).leaves_drawn, 2 * prune::leaf_prefix(0.5f, uint32_t(m.leaves.size())));

@@ -12,6 +12,7 @@
 #include "engine/tools/bake/tree_bake.h"
 #include "engine/scene/scene.h"
 #include "generators/asset/asset_io.h"
+#include "generators/asset/pr_tables.h"
 #include "generators/species/registry.h"
 #include "tests/common/test_files.h"
 #include "tests/gpu/gpu_scenes.h"
@@ -146,6 +147,40 @@ TEST_F(SceneGpuTest, OptMatchesCookQualityWithFewerLeaves) {
   // leaves). An absolute floor too: at Q < 0.8 (about λ = 0.2, s = 1/λ for this model in
   // its bake) whole crowns visibly thin out.
   EXPECT_GE(q_opt.quality(), 0.8);
+}
+
+TEST_F(SceneGpuTest, OptKeepsCooksQualityAtEveryResolution) {
+  // The run time looks λ_opt up by each tree's projected size as well as d (issue 20): the
+  // same view at 4 × the pixels prunes less where the trees are larger on screen, and opt
+  // keeps Cook's quality at both within the one "equal quality" tolerance, −0.002.
+  TreeModel m = broadleaf();
+  TreeBakeSettings bake;
+  bake.views = 4;
+  bake.resolution = 256;
+  bake_tree_model(ctx_, m, bake);
+  Scene s = model_scene(m, 40, 45.0f);
+  s.desc.prune_distance = 120.0f;
+  s.desc.camera.position = glm::vec3(0.0f, 8.0f, -70.0f);
+  s.desc.camera.target = glm::vec3(0.0f, 4.0f, 0.0f);
+  uint32_t opt_leaves[2] = {0, 0};
+  const uint32_t widths[2] = {160, 640};
+  for (int k = 0; k < 2; ++k) {
+    SCOPED_TRACE(std::to_string(widths[k]) + " px wide");
+    Renderer r(ctx_, s, widths[k], widths[k] * 3 / 4, 1);
+    FrameSettings full, cook, opt;
+    cook.prune_mode = PruneMode::cook;
+    opt.prune_mode = PruneMode::opt;
+    r.render_reference(s.desc.camera, full);
+    PrResult q_cook = r.compare_with_reference(s.desc.camera, cook);
+    PrResult q_opt = r.compare_with_reference(s.desc.camera, opt);
+    uint32_t leaves_cook = r.render(s.desc.camera, nullptr, cook).leaves_drawn;
+    opt_leaves[k] = r.render(s.desc.camera, nullptr, opt).leaves_drawn;
+    std::printf("%u x %u: Q cook %.4f (%u leaves), opt %.4f (%u leaves)\n", widths[k], widths[k] * 3 / 4,
+                q_cook.quality(), leaves_cook, q_opt.quality(), opt_leaves[k]);
+    EXPECT_GE(q_opt.quality(), q_cook.quality() - kEqualQualityTolerance);
+    EXPECT_LT(opt_leaves[k], leaves_cook) << "opt should still need less geometry than Cook";
+  }
+  EXPECT_GT(opt_leaves[1], opt_leaves[0]) << "larger on screen, the trees should keep more leaves";
 }
 
 TEST_F(SceneGpuTest, CpuFrameTimeIndependentOfInstanceCount) {

@@ -120,24 +120,31 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
     m.hull.vertices[i].uv = glm::vec2(float(t - std::floor(t)), float(i % 1000) / 1000.0f);
   }
 
+  // Tables of every size, each array distinct from the others.
   PrTables t;
-  t.s_opt = distinct_values(S_SAMPLES, 0.5f, 40.0f, 0.23);
-  t.q_opt = distinct_values(S_SAMPLES, -1.0f, 1.0f, 0.37);
-  t.q_inverse = distinct_values(S_SAMPLES, -0.9f, 0.95f, 0.41);
-  t.lambda_opt = distinct_values(D_SAMPLES, 0.05f, 0.95f, 0.67);
+  t.size0 = 317.5f;
+  for (uint32_t b = 0; b < PR_SIZES; ++b) {
+    PrSizeTables st;
+    st.s_opt = distinct_values(S_SAMPLES, 0.5f, 40.0f, 0.23 + 0.01 * b);
+    st.q_opt = distinct_values(S_SAMPLES, -1.0f, 1.0f, 0.37 + 0.01 * b);
+    st.q_inverse = distinct_values(S_SAMPLES, -0.9f, 0.95f, 0.41 + 0.01 * b);
+    st.lambda_opt = distinct_values(D_SAMPLES, 0.05f, 0.95f, 0.67 + 0.01 * b);
+    for (const auto* v : {&st.s_opt, &st.q_opt, &st.q_inverse, &st.lambda_opt}) {
+      ASSERT_TRUE(all_distinct(*v));
+      ASSERT_FALSE(monotonic(*v));
+    }
+    t.sizes.push_back(st);
+  }
   t.priority = "combined";
   t.views = 13;
-  t.resolution = 317;
-  for (const auto* v : {&t.s_opt, &t.q_opt, &t.q_inverse, &t.lambda_opt}) {
-    ASSERT_TRUE(all_distinct(*v));
-    ASSERT_FALSE(monotonic(*v));
-  }
+  t.resolution = 321;
   m.bake.pr_tables = t;
-  // The PR diagram: distinct points (λ, s, P, R), P and R as doubles.
+  // The PR diagram: distinct points (λ, s, size, P, R), P and R as doubles.
   {
-    std::vector<float> l = distinct_values(37, 0.0f, 1.0f, 0.13), sc = distinct_values(37, 0.5f, 90.0f, 0.29);
+    std::vector<float> l = distinct_values(37, 0.0f, 1.0f, 0.13), sc = distinct_values(37, 0.5f, 90.0f, 0.29),
+                       px = distinct_values(37, 4.0f, 600.0f, 0.31);
     for (size_t k = 0; k < l.size(); ++k)
-      m.bake.pr_samples.push_back({l[k], sc[k], 0.3 + 0.7 / double(k + 2), 1.0 / std::sqrt(double(k + 1))});
+      m.bake.pr_samples.push_back({l[k], sc[k], px[k], 0.3 + 0.7 / double(k + 2), 1.0 / std::sqrt(double(k + 1))});
   }
 
   std::vector<uint8_t> bytes = encode_glb(m);
@@ -183,13 +190,18 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
   const std::optional<PrTables>& tables = back.bake.pr_tables;
   ASSERT_TRUE(tables.has_value());
   EXPECT_TRUE(back.bake.baked());
-  expect_same_floats(tables->s_opt, t.s_opt, "s_opt");
-  expect_same_floats(tables->q_opt, t.q_opt, "q_opt");
-  expect_same_floats(tables->q_inverse, t.q_inverse, "q_inverse");
-  expect_same_floats(tables->lambda_opt, t.lambda_opt, "lambda_opt");
+  ASSERT_EQ(tables->sizes.size(), size_t(PR_SIZES));
+  EXPECT_EQ(tables->size0, 317.5f);
+  for (uint32_t b = 0; b < PR_SIZES; ++b) {
+    SCOPED_TRACE("size " + std::to_string(b));
+    expect_same_floats(tables->sizes[b].s_opt, t.sizes[b].s_opt, "s_opt");
+    expect_same_floats(tables->sizes[b].q_opt, t.sizes[b].q_opt, "q_opt");
+    expect_same_floats(tables->sizes[b].q_inverse, t.sizes[b].q_inverse, "q_inverse");
+    expect_same_floats(tables->sizes[b].lambda_opt, t.sizes[b].lambda_opt, "lambda_opt");
+  }
   EXPECT_EQ(tables->priority, "combined");
   EXPECT_EQ(tables->views, 13);
-  EXPECT_EQ(tables->resolution, 317);
+  EXPECT_EQ(tables->resolution, 321);
 
   // PR samples: every point, in order, P and R as the doubles they were.
   ASSERT_EQ(back.bake.pr_samples.size(), m.bake.pr_samples.size());
@@ -197,21 +209,22 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
     const PrPoint &a = back.bake.pr_samples[k], &b = m.bake.pr_samples[k];
     EXPECT_EQ(a.lambda, b.lambda) << "pr_samples[" << k << "]";
     EXPECT_EQ(a.scale, b.scale) << "pr_samples[" << k << "]";
+    EXPECT_EQ(a.size, b.size) << "pr_samples[" << k << "]";
     EXPECT_EQ(a.precision, b.precision) << "pr_samples[" << k << "]";
     EXPECT_EQ(a.recall, b.recall) << "pr_samples[" << k << "]";
   }
 
   // The same tables straight from JSON (no .glb in between) also come back unchanged.
   PrTables direct = pr_tables_from_json(to_json(t), "y.glb");
-  expect_same_floats(direct.s_opt, t.s_opt, "s_opt (json)");
-  expect_same_floats(direct.lambda_opt, t.lambda_opt, "lambda_opt (json)");
+  expect_same_floats(direct.sizes[3].s_opt, t.sizes[3].s_opt, "s_opt (json)");
+  expect_same_floats(direct.sizes[5].lambda_opt, t.sizes[5].lambda_opt, "lambda_opt (json)");
 
   // What was read back writes the same extras.forest: nothing lost, nothing reordered.
   EXPECT_EQ(glb_json(encode_glb(back))["extras"]["forest"].dump(), glb_json(bytes)["extras"]["forest"].dump());
 }
 
 TEST(BakeIo, MalformedTablesNameTheKey) {
-  nlohmann::json tables = {{"lambda", {0.1, 0.2}}};
+  nlohmann::json tables = {{"format", kPrTablesFormat}, {"lambda", {0.1, 0.2}}};
   try {
     pr_tables_from_json(tables, "m.glb");
     FAIL() << "no error";
@@ -230,16 +243,17 @@ const std::vector<uint8_t>& baked_glb() {
     Hull h = build_hull(m.leaves, plant_height(m));
     attach_hull(m, h);
     apply_priority(m, h, Priority::combined, 3);
-    PrTables t;
-    t.s_opt.assign(S_SAMPLES, 1.5f);
-    t.q_opt.assign(S_SAMPLES, 0.5f);
-    t.q_inverse.assign(S_SAMPLES, 0.25f);
-    t.lambda_opt.assign(D_SAMPLES, 0.75f);
+    PrSizeTables st;
+    st.s_opt.assign(S_SAMPLES, 1.5f);
+    st.q_opt.assign(S_SAMPLES, 0.5f);
+    st.q_inverse.assign(S_SAMPLES, 0.25f);
+    st.lambda_opt.assign(D_SAMPLES, 0.75f);
+    PrTables t = pr_tables_at_every_size(st, 64.0f);
     t.priority = "combined";
     t.views = 2;
     t.resolution = 64;
     m.bake.pr_tables = t;
-    m.bake.pr_samples = {{0.5f, 2.0f, 0.9, 0.8}, {1.0f, 1.0f, 1.0, 1.0}};
+    m.bake.pr_samples = {{0.5f, 2.0f, 64.0f, 0.9, 0.8}, {1.0f, 1.0f, 2.0f, 1.0, 1.0}};
     return encode_glb(m);
   }();
   return bytes;
@@ -285,7 +299,23 @@ TEST(BakeIo, DerivedTableValuesAreChecked) {
   expect_refused([](nlohmann::json& f) { f["pr_tables"]["d"].erase(0); }, "extras.forest.pr_tables.d");
   expect_refused([](nlohmann::json& f) { f["pr_tables"].erase("lambda"); }, "extras.forest.pr_tables.lambda");
   // Measured tables out of range, as before.
-  expect_refused([](nlohmann::json& f) { f["pr_tables"]["lambda_opt"][2] = 1.5; }, "extras.forest.pr_tables.lambda_opt");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][4]["lambda_opt"][2] = 1.5; },
+                 "extras.forest.pr_tables.per_size[4].lambda_opt");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"].erase(5); }, "extras.forest.pr_tables.per_size");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["sizes"][2] = 17.0; }, "extras.forest.pr_tables.sizes: sizes[2]");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["size0"] = -3.0; }, "extras.forest.pr_tables.size0");
+}
+
+TEST(BakeIo, TablesOfAnOlderFormatAskForABake) {
+  // Format 1 had one size: s_opt and lambda_opt at the top, no format key.
+  expect_refused([](nlohmann::json& f) {
+    nlohmann::json& t = f["pr_tables"];
+    t["s_opt"] = t["per_size"][0]["s_opt"];
+    t["lambda_opt"] = t["per_size"][0]["lambda_opt"];
+    t.erase("per_size");
+    t.erase("format");
+  }, "extras.forest.pr_tables.format: missing: PR tables of format 1 (measured at one size); generate the model again");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["format"] = 3; }, "extras.forest.pr_tables.format: expected 2");
 }
 
 TEST(BakeIo, HullSamplesAreChecked) {
@@ -312,8 +342,8 @@ TEST(BakeIo, OrderFlagsAndSamplesAreChecked) {
   expect_refused([](nlohmann::json& f) { f.erase("pr_tables"); }, "extras.forest.pr_tables: missing");
   expect_refused([](nlohmann::json& f) { f["baked"] = false; }, "extras.forest.baked");
   expect_refused([](nlohmann::json& f) { f.erase("pr_samples"); }, "extras.forest.pr_samples: missing");
-  expect_refused([](nlohmann::json& f) { f["pr_samples"][1] = {1.0, 1.0, 1.5, 1.0}; }, "extras.forest.pr_samples[1]");
-  expect_refused([](nlohmann::json& f) { f["pr_samples"][0] = {0.5, 2.0, 0.9}; }, "extras.forest.pr_samples[0]");
+  expect_refused([](nlohmann::json& f) { f["pr_samples"][1] = {1.0, 1.0, 2.0, 1.5, 1.0}; }, "extras.forest.pr_samples[1]");
+  expect_refused([](nlohmann::json& f) { f["pr_samples"][0] = {0.5, 2.0, 0.9, 0.8}; }, "extras.forest.pr_samples[0]");
 }
 
 TEST(BakeIo, BakeKeysInMetaAreAProgrammingError) {

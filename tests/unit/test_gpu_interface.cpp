@@ -105,7 +105,7 @@ const std::vector<StructDecl>& shared_structs() {
                       M(lod_index_count), M(lod_vertex_offset), M(lod_error), M(lod_count), M(leaf_texture_layer),
                       M(card_first_index), M(card_index_count), M(card_vertex_offset), M(leaf_offset),
                       M(leaf_count), M(table_offset), M(has_tables), M(sample_offset), M(sample_count),
-                      M(occlusion_margin), M(card_radius), M(bark_texture_layer), M(crown_extinction)),
+                      M(occlusion_margin), M(card_radius), M(bark_texture_layer), M(crown_extinction), M(pr_size0)),
       GPU_STRUCT_DECL(HullSample, M(position), M(normal)),
       GPU_STRUCT_DECL(InstanceState, M(occlusion), M(visible), M(occluded), M(pad)),
       GPU_STRUCT_DECL(Leaf, M(position_scale), M(rotation), M(color), M(crown_depth)),
@@ -117,7 +117,7 @@ const std::vector<StructDecl>& shared_structs() {
                       M(tail_jobs), M(tail_groups_y), M(tail_groups_z), M(tail_leaves), M(shadow_branch_draws),
                       M(shadow_leaf_draws), M(shadow_triangles), M(shadow_leaves)),
       GPU_STRUCT_DECL(PrCounts, M(tp), M(fp), M(fn), M(pad)),
-      GPU_STRUCT_DECL(PrCountPush, M(pixel_count), M(reference_offset), M(branch_offset), M(result)),
+      GPU_STRUCT_DECL(PrCountPush, M(pixel_count), M(reference_offset), M(branch_offset), M(result), M(width), M(lattices)),
       GPU_STRUCT_DECL(DepthPyramidPush, M(source_size), M(destination_size), M(first_level), M(pad)),
       GPU_STRUCT_DECL(PresentPush, M(offset), M(size)),
       GPU_STRUCT_DECL(DrawPush, M(command_base), M(cascade)),
@@ -175,6 +175,7 @@ struct SpecDecl {
 const SpecDecl kSpecConstants[] = {
     {"tree_frag", "LEAF", SPEC_LEAF},
     {"tree_frag", "ALPHA_TO_COVERAGE", SPEC_ALPHA_TO_COVERAGE},
+    {"tree_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
     {"depth_pyramid_comp", "MINMAX_SAMPLER", SPEC_MINMAX_SAMPLER},
 };
 

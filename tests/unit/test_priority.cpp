@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
+#include <tuple>
 
 #include "generators/bake/hull/hull.h"
 #include "generators/bake/priority/priority.h"
+#include "generators/bake/priority/priority_stratify.h"
 #include "generators/core/input_error.h"
 #include "generators/core/rng.h"
 
@@ -104,6 +107,9 @@ double brute_density(const TreeModel& m, size_t i, float r) {
   return f;
 }
 
+// The paper's orders, unstratified (priority_stratify.h).
+const PriorityParams kPaper{.stratify_cell = 0.0f};
+
 }  // namespace
 
 TEST(Priority, NamesRoundTrip) {
@@ -146,7 +152,7 @@ TEST(Priority, RandomIsUncorrelatedWithHeight) {
 TEST(Priority, OrientationPutsOutwardFacingLeavesFirst) {
   Crown c = sphere_crown(4000, 5);
   Hull hull = build_hull(c.model.leaves, 4.0f);
-  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::orientation, 1);
+  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::orientation, 1, kPaper);
   const size_t n = order.size(), fifth = n / 5;
   double radial_first = mean_over(order, 0, fifth, [&](uint32_t i) { return c.radial[i] ? 1.0 : 0.0; });
   double radial_last = mean_over(order, n - fifth, n, [&](uint32_t i) { return c.radial[i] ? 1.0 : 0.0; });
@@ -178,7 +184,7 @@ TEST(Priority, DensityPutsLowDensityLeavesFirst) {
     c.radial.push_back(false);
   }
   Hull hull = build_hull(c.model.leaves, 4.0f);
-  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::density, 3);
+  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::density, 3, kPaper);
   const size_t n = order.size(), fifth = n / 5;
   auto dens = [&](uint32_t i) { return brute_density(c.model, i, hull.radius); };
   EXPECT_LT(mean_over(order, 0, fifth, dens), 0.5 * mean_over(order, n - fifth, n, dens));
@@ -194,7 +200,7 @@ TEST(Priority, DensitySwitchesToRandomOnceUniform) {
   // 20 % (the random phase by default) rank and height are uncorrelated.
   Crown c = sphere_crown(4000, 8);
   Hull hull = build_hull(c.model.leaves, 4.0f);
-  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::density, 5);
+  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::density, 5, kPaper);
   std::vector<uint32_t> prefix(order.begin(), order.begin() + order.size() / 5);
   std::vector<double> h(c.model.leaves.size());
   for (size_t i = 0; i < h.size(); ++i) h[i] = c.model.leaves[i].position.y;
@@ -223,11 +229,11 @@ TEST(Priority, CombinedIsNormalizedAndFollowsItsScore) {
     }
     EXPECT_NEAR(s.p_combined[i], (raw - raw_lo) / (raw_hi - raw_lo), 1e-5f);
   }
-  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::combined, 11);
+  std::vector<uint32_t> order = priority_order(c.model, hull, Priority::combined, 11, kPaper);
   std::vector<double> p(s.p_combined.begin(), s.p_combined.end());
   // Descending in P (small jitter): strongly anti-correlated rank vs P.
   EXPECT_LT(rank_correlation(order, p), -0.95);
-  EXPECT_EQ(order, priority_order(c.model, hull, Priority::combined, 11));
+  EXPECT_EQ(order, priority_order(c.model, hull, Priority::combined, 11, kPaper));
 }
 
 TEST(Priority, ReorderAndApply) {
@@ -269,8 +275,8 @@ TEST(Priority, LayeredRemovesLikeDensityThenKeepsByOrientation) {
   }
   Hull hull = build_hull(c.model.leaves, 4.0f);
   const size_t n = c.model.leaves.size();
-  std::vector<uint32_t> layered = priority_order(c.model, hull, Priority::layered, 7);
-  std::vector<uint32_t> density = priority_order(c.model, hull, Priority::density, 7);
+  std::vector<uint32_t> layered = priority_order(c.model, hull, Priority::layered, 7, kPaper);
+  std::vector<uint32_t> density = priority_order(c.model, hull, Priority::density, 7, kPaper);
   LeafPriorityScores s = leaf_priority_scores(c.model, hull, 7);
   // The tail is density's greedy tail, leaf for leaf; find where the two orders part.
   size_t tail = 0;
@@ -284,4 +290,59 @@ TEST(Priority, LayeredRemovesLikeDensityThenKeepsByOrientation) {
   std::sort(head.begin(), head.end());
   std::sort(survivors.begin(), survivors.end());
   EXPECT_EQ(head, survivors);
+}
+
+TEST(Priority, StratifiedOrdersKeepEveryRegionInProportion) {
+  // A crown with a dense clump: the paper's density order empties the clump first, so a
+  // short prefix under-represents it; stratified, every cell keeps about λn of its n leaves.
+  Crown c = sphere_crown(3000, 6);
+  Rng rng(6, 2);
+  for (int i = 0; i < 1500; ++i) {
+    LeafPlacement l;
+    l.scale = 0.02f;
+    l.position = glm::vec3(0.4f, 3.3f, 0.1f) + 0.18f * glm::vec3(rng.symmetric(), rng.symmetric(), rng.symmetric());
+    c.model.leaves.push_back(l);
+  }
+  Hull hull = build_hull(c.model.leaves, 4.0f);
+  const size_t n = c.model.leaves.size();
+  const float cell = 0.5f * hull.radius;
+  std::vector<glm::vec3> centers(n);
+  for (size_t i = 0; i < n; ++i) centers[i] = leaf_center(c.model.leaves[i]);
+  auto cell_id = [&](uint32_t i) {
+    glm::vec3 q = glm::floor(centers[i] / cell);
+    return std::make_tuple(int(q.x), int(q.y), int(q.z));
+  };
+  std::map<std::tuple<int, int, int>, int> total;
+  for (uint32_t i = 0; i < n; ++i) ++total[cell_id(i)];
+  // Largest deviation of a prefix's per-cell count from λ·n, in leaves.
+  auto worst_deviation = [&](const std::vector<uint32_t>& order, double lambda) {
+    std::map<std::tuple<int, int, int>, int> kept;
+    const size_t k = size_t(std::ceil(lambda * double(n)));
+    for (size_t r = 0; r < k; ++r) ++kept[cell_id(order[r])];
+    double worst = 0.0;
+    for (auto& [id, t] : total) worst = std::max(worst, std::abs(double(kept[id]) - double(k) / double(n) * t));
+    return worst;
+  };
+  for (Priority p : {Priority::density, Priority::orientation, Priority::combined, Priority::layered}) {
+    SCOPED_TRACE(std::string(priority_name(p)));
+    std::vector<uint32_t> paper = priority_order(c.model, hull, p, 3, kPaper);
+    std::vector<uint32_t> order = priority_order(c.model, hull, p, 3);
+    EXPECT_TRUE(is_permutation(order, n));
+    EXPECT_EQ(order, stratify_order(paper, centers, cell, 3));
+    for (double lambda : {0.1, 0.25, 0.5, 0.8}) {
+      SCOPED_TRACE(lambda);
+      EXPECT_LE(worst_deviation(order, lambda), 1.5);
+    }
+    if (p == Priority::density) EXPECT_GT(worst_deviation(paper, 0.25), 5.0) << "the clump should be thinned first";
+    // Within a cell the order's own choice stands: the leaves of a cell come in the paper order.
+    std::vector<size_t> rank(n);
+    for (size_t r = 0; r < n; ++r) rank[paper[r]] = r;
+    std::map<std::tuple<int, int, int>, size_t> last;
+    for (uint32_t i : order) {
+      auto [it, added] = last.try_emplace(cell_id(i), rank[i]);
+      if (!added) EXPECT_GT(rank[i], it->second), it->second = rank[i];
+    }
+  }
+  EXPECT_EQ(priority_order(c.model, hull, Priority::random, 3), priority_order(c.model, hull, Priority::random, 3, kPaper))
+      << "random is Cook's order and stays unstratified";
 }

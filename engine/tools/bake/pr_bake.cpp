@@ -104,6 +104,14 @@ struct ScaleSearch {
       if (better(i, m)) m = i;
     lo = hi = m;
   }
+  // Once polishing, m is the best of everything measured on this grid, the other sizes'
+  // probes included (every render counts every size, so they come free).
+  void adopt_best() {
+    if (lo < hi) return;
+    for (int i = 0; i < int(s.size()); ++i)
+      if (!std::isnan(q[size_t(i)]) && better(i, m)) m = i;
+    lo = hi = m;
+  }
 };
 
 using clock = std::chrono::steady_clock;
@@ -111,67 +119,44 @@ using clock = std::chrono::steady_clock;
 double seconds_since(clock::time_point t0) { return std::chrono::duration<double>(clock::now() - t0).count(); }
 
 // Azimuths around the model, alternating two elevations.
-std::vector<CameraDesc> orbit_views(const TreeModel& model, uint32_t views) {
+std::vector<CameraDesc> pr_views(const TreeModel& model, const PrBakeOptions& options) {
   std::vector<CameraDesc> cams;
-  for (uint32_t v = 0; v < views; ++v) {
-    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(views);
+  for (uint32_t v = 0; v < options.views; ++v) {
+    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(options.views);
     float elevation = glm::radians(v % 2 ? 35.0f : 10.0f);
-    cams.push_back(orbit_camera(model.bounding_sphere, azimuth, elevation, 30.0f));
+    cams.push_back(pr_view_camera(model.bounding_sphere, azimuth, elevation, options.size0,
+                                  pr_render_resolution(options.size0)));
   }
   return cams;
 }
 
-// PR of (λ, s) points summed over the views, each point measured once, and what it cost.
+// PR of (λ, s) points summed over the views, at every size, each point measured once.
 struct PrMeter {
   Renderer& renderer;
   const PrBakeOptions& options;
-  const std::vector<CameraDesc>& cams;
-  std::map<Point, PrResult> sums;
+  std::map<Point, PrSizes> sums;
   PrBakeStats stats;
   size_t expected = 0, measured = 0;  // points, for the progress fraction
 };
 
-// All views of all points in one submit (Renderer::compare_coverage).
-void measure_batched(PrMeter& m, const std::vector<Point>& points) {
-  std::vector<CoverageJob> jobs;
-  for (auto [l, s] : points)
-    for (uint32_t v = 0; v < m.options.views; ++v) jobs.push_back({v, l, s});
-  auto t0 = clock::now();
-  std::vector<PrResult> r = m.renderer.compare_coverage(jobs);
-  m.stats.compare_seconds += seconds_since(t0);
-  ++m.stats.submits;
-  for (size_t i = 0; i < jobs.size(); ++i) m.sums[{jobs[i].lambda, jobs[i].scale}] += r[i];
-}
-
-// The reference path: per view a full-detail render, then one submit per pruned render.
-void measure_view_by_view(PrMeter& m, const std::vector<Point>& points) {
-  for (uint32_t v = 0; v < m.options.views; ++v) {
-    auto t0 = clock::now();
-    FrameSettings full;
-    full.prune_mode = PruneMode::full;
-    m.renderer.render_reference(m.cams[v], full);
-    auto t1 = clock::now();
-    for (auto [l, s] : points) {
-      FrameSettings test;
-      test.prune_mode = PruneMode::fixed;
-      test.fixed_lambda = l;
-      test.fixed_scale = s;
-      m.sums[{l, s}] += m.renderer.compare_with_reference(m.cams[v], test);
-    }
-    m.stats.reference_seconds += std::chrono::duration<double>(t1 - t0).count();
-    m.stats.compare_seconds += seconds_since(t1);
-    m.stats.submits += 1 + uint32_t(points.size());
-  }
-}
-
-// Measures the points not measured yet (duplicates once).
+// Measures the points not measured yet (duplicates once): all views of all points in one
+// submit (Renderer::compare_coverage).
 void measure(PrMeter& m, std::vector<Point> points) {
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   std::erase_if(points, [&](const Point& p) { return m.sums.count(p) > 0; });
   if (points.empty()) return;
-  if (m.options.batched) measure_batched(m, points);
-  else measure_view_by_view(m, points);
+  std::vector<CoverageJob> jobs;
+  for (auto [l, s] : points)
+    for (uint32_t v = 0; v < m.options.views; ++v) jobs.push_back({v, l, s});
+  auto t0 = clock::now();
+  std::vector<PrSizes> r = m.renderer.compare_coverage(jobs);
+  m.stats.compare_seconds += seconds_since(t0);
+  ++m.stats.submits;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    PrSizes& sum = m.sums[{jobs[i].lambda, jobs[i].scale}];
+    for (uint32_t b = 0; b < PR_SIZES; ++b) sum[b] += r[i][b];
+  }
   m.stats.renders += uint32_t(points.size()) * m.options.views;
   m.measured += points.size();
   if (m.options.progress)
@@ -188,12 +173,14 @@ ScaleSearch start_search(float lambda, uint32_t candidates) {
   return ss;
 }
 
-// The sample positions of the tables, the points measured first and one s search per λ > 0.
+// The sample positions of the tables, the points measured first and one s search per λ > 0
+// and searched size.
 struct SamplePlan {
   std::vector<float> lambdas;  // S_SAMPLES
   std::vector<float> cook;     // D_SAMPLES: λ_Cook(d_j)
   std::vector<Point> first;    // Cook's points, and the start of every s search (or the whole grid)
   std::vector<ScaleSearch> searches;
+  std::vector<uint32_t> search_size;  // the size each search maximizes Q at
   size_t expected = 0;         // points measured in all, about (for progress)
 };
 
@@ -206,13 +193,19 @@ SamplePlan plan_samples(const PrBakeOptions& options) {
     plan.cook[j] = pr_lambda_cook(j);
     if (plan.cook[j] > 0.0f) plan.first.push_back({plan.cook[j], 1.0f / plan.cook[j]});
   }
+  const uint32_t searched = std::clamp(options.searched_sizes, 1u, uint32_t(PR_SIZES));
   for (uint32_t i = 1; i < S_SAMPLES; ++i) {
     ScaleSearch ss = start_search(plan.lambdas[i], options.scale_candidates);
     plan.first.push_back({ss.lambda, 1.0f / ss.lambda});  // Cook's s = 1/λ is always measured (q_inverse)
     if (!options.search_scale)
       for (float s : ss.s) plan.first.push_back({ss.lambda, s});
-    plan.expected += options.search_scale ? 2 * size_t(std::ceil(std::log2(double(ss.s.size())))) : ss.s.size();
-    plan.searches.push_back(std::move(ss));
+    // The sizes' searches share most probes (each render counts every size).
+    plan.expected += options.search_scale ? 3 * size_t(std::ceil(std::log2(double(ss.s.size())))) : ss.s.size();
+    if (options.search_scale)
+      for (uint32_t b = 0; b < searched; ++b) {
+        plan.searches.push_back(ss);
+        plan.search_size.push_back(b);
+      }
   }
   plan.expected += D_SAMPLES;
   return plan;
@@ -220,28 +213,36 @@ SamplePlan plan_samples(const PrBakeOptions& options) {
 
 // Every search starts from Cook's s = 1/λ (measured with the first points); then all
 // searches' probes of a round are measured together until none asks for more.
-void run_scale_searches(PrMeter& m, std::vector<ScaleSearch>& searches) {
-  for (ScaleSearch& ss : searches) ss.q[size_t(ss.m)] = m.sums[{ss.lambda, ss.s[size_t(ss.m)]}].quality();
-  while (m.options.search_scale) {
+void run_scale_searches(PrMeter& m, SamplePlan& plan) {
+  std::vector<ScaleSearch>& searches = plan.searches;
+  auto quality = [&](size_t k, int p) {
+    return m.sums[{searches[k].lambda, searches[k].s[size_t(p)]}][plan.search_size[k]].quality();
+  };
+  for (size_t k = 0; k < searches.size(); ++k) searches[k].q[size_t(searches[k].m)] = quality(k, searches[k].m);
+  for (;;) {
     std::vector<Point> round;
     std::vector<std::vector<int>> probes;
-    for (ScaleSearch& ss : searches) {
+    for (size_t k = 0; k < searches.size(); ++k) {
+      ScaleSearch& ss = searches[k];
+      for (size_t i = 0; i < ss.s.size(); ++i)
+        if (std::isnan(ss.q[i]) && m.sums.count({ss.lambda, ss.s[i]})) ss.q[i] = quality(k, int(i));
+      ss.adopt_best();
       probes.push_back(ss.probes());
       for (int p : probes.back()) round.push_back({ss.lambda, ss.s[size_t(p)]});
     }
     if (round.empty()) break;
     measure(m, round);
     for (size_t k = 0; k < searches.size(); ++k) {
-      ScaleSearch& ss = searches[k];
       if (probes[k].empty()) continue;
-      for (int p : probes[k]) ss.q[size_t(p)] = m.sums[{ss.lambda, ss.s[size_t(p)]}].quality();
-      ss.advance(probes[k]);
+      for (int p : probes[k]) searches[k].q[size_t(p)] = quality(k, p);
+      searches[k].advance(probes[k]);
     }
   }
 }
 
-// s_opt(λ) (ties to the smaller s), q_opt and q_inverse from the measured points.
-void fill_scale_tables(PrTables& t, const std::map<Point, PrResult>& sums, const std::vector<float>& lambdas) {
+// s_opt(λ) (ties to the smaller s), q_opt and q_inverse at size b from the measured points.
+void fill_scale_tables(PrSizeTables& t, const std::map<Point, PrSizes>& sums, const std::vector<float>& lambdas,
+                       uint32_t b) {
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
@@ -250,7 +251,7 @@ void fill_scale_tables(PrTables& t, const std::map<Point, PrResult>& sums, const
     double best = -2.0;
     for (auto& [key, pr] : sums) {
       if (key.first != l) continue;
-      double q = pr.quality();
+      double q = pr[b].quality();
       if (q > best || (q == best && key.second < t.s_opt[i])) best = q, t.s_opt[i] = key.second;
       if (key.second == 1.0f / l) t.q_inverse[i] = float(q);
     }
@@ -265,12 +266,13 @@ void fill_scale_tables(PrTables& t, const std::map<Point, PrResult>& sums, const
   t.q_inverse[0] = 0.0f;
 }
 
-// λ_opt(d): the smallest λ whose optimal quality matches Cook's at λ_Cook(d) (Neubert 2012 §7.2.5).
-void fill_lambda_opt(PrTables& t, std::map<Point, PrResult>& sums, const std::vector<float>& cook) {
+// λ_opt(d) at size b: the smallest λ whose optimal quality matches Cook's at λ_Cook(d)
+// (Neubert 2012 §7.2.5), both seen at that size.
+void fill_lambda_opt(PrSizeTables& t, std::map<Point, PrSizes>& sums, const std::vector<float>& cook, uint32_t b) {
   t.lambda_opt.resize(D_SAMPLES);
   for (uint32_t j = 0; j < D_SAMPLES; ++j) {
     float lc = cook[j];
-    t.lambda_opt[j] = lc <= 0.0f ? 0.0f : smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}].quality(), lc);
+    t.lambda_opt[j] = lc <= 0.0f ? 0.0f : smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}][b].quality(), lc);
   }
   t.lambda_opt[0] = 1.0f;
   t.lambda_opt = non_increasing(t.lambda_opt);
@@ -278,30 +280,50 @@ void fill_lambda_opt(PrTables& t, std::map<Point, PrResult>& sums, const std::ve
 
 }  // namespace
 
+uint32_t pr_render_resolution(uint32_t size0) { return size0 + 4; }
+
+CameraDesc pr_view_camera(glm::vec4 sphere, float azimuth, float elevation, uint32_t size0, uint32_t resolution) {
+  CameraDesc cam;
+  cam.fov_deg = 30.0f;
+  // prune::projected_size(r, D, k) = size0 with k = resolution / (2 tan(fov / 2)).
+  const float r = std::max(sphere.w, 1e-3f);
+  const float k = float(resolution) / (2.0f * std::tan(glm::radians(cam.fov_deg) * 0.5f));
+  const float along = 2.0f * k * r / float(size0);  // √(D² − r²)
+  const float distance = std::sqrt(along * along + r * r);
+  cam.target = glm::vec3(sphere);
+  cam.position = cam.target + distance * glm::vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                                                   -std::cos(azimuth) * std::cos(elevation));
+  cam.near = std::max(distance * 1e-3f, 1e-3f);
+  cam.far = distance * 4.0f;
+  return cam;
+}
+
 PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const PrBakeOptions& options) {
-  Scene scene = make_model_scene(model, options.resolution, 1);
-  Renderer renderer(ctx, scene, options.resolution, options.resolution, 1);
-  std::vector<CameraDesc> cams = orbit_views(model, options.views);
-  PrMeter meter{renderer, options, cams};
-  if (options.batched) {  // the views' full-detail (and branch) coverage, once
-    auto t0 = clock::now();
-    renderer.set_coverage_views(cams);
-    meter.stats.reference_seconds += seconds_since(t0);
-    ++meter.stats.submits;
-  }
+  const uint32_t resolution = pr_render_resolution(options.size0);
+  Scene scene = make_model_scene(model, resolution, 1);
+  Renderer renderer(ctx, scene, resolution, resolution, 1);
+  PrMeter meter{renderer, options};
+  auto t0 = clock::now();
+  renderer.set_coverage_views(pr_views(model, options));  // the views' full-detail (and branch) coverage, once
+  meter.stats.reference_seconds += seconds_since(t0);
+  ++meter.stats.submits;
   SamplePlan plan = plan_samples(options);
   meter.expected = plan.expected;
   measure(meter, plan.first);
-  run_scale_searches(meter, plan.searches);
+  run_scale_searches(meter, plan);
 
   PrMeasurement out;
   out.stats = meter.stats;
   for (auto& [key, pr] : meter.sums) out.samples.push_back({key.first, key.second, pr});
   PrTables& t = out.tables;
   t.views = int(options.views);
-  t.resolution = int(options.resolution);
-  fill_scale_tables(t, meter.sums, plan.lambdas);
-  fill_lambda_opt(t, meter.sums, plan.cook);
+  t.resolution = int(resolution);
+  t.size0 = float(options.size0);
+  t.sizes.resize(PR_SIZES);
+  for (uint32_t b = 0; b < PR_SIZES; ++b) {
+    fill_scale_tables(t.sizes[b], meter.sums, plan.lambdas, b);
+    fill_lambda_opt(t.sizes[b], meter.sums, plan.cook, b);
+  }
   if (options.progress) options.progress(1.0);
   return out;
 }

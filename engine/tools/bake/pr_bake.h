@@ -11,16 +11,18 @@
 namespace forest {
 
 struct PrBakeOptions {
-  uint32_t resolution = 256;  // pixels of each square coverage render
+  // Projected size of the tables' size 0, in pixels across the bounding sphere; the tables
+  // hold it and PR_SIZES − 1 halvings, all measured from the same renders (lattices).
+  uint32_t size0 = 512;
   uint32_t views = 6;         // azimuths around the model, alternating two elevations
   uint32_t scale_candidates = 12;  // s grid per λ, geometric in [1, 1.5/λ], plus 1/λ
   // Bracket search over the s grid, exploiting that Q(λ, s) is unimodal in s (it trades
-  // recall for precision): about half the renders of trying every grid value.
+  // recall for precision): about half the renders of trying every grid value. false: every
+  // grid value (the reference the search is tested against).
   bool search_scale = true;
-  // All renders of a search round in one submit, branches drawn once per view
-  // (Renderer::compare_coverage). false: one submit per render with the branches redrawn
-  // each time — the original path, kept as the reference for tests and bake_bench.
-  bool batched = true;
+  // Sizes whose s_opt is searched (the first ones). The others take the best s among the
+  // points measured for these: 1 is the single-size bake of old, for comparisons.
+  uint32_t searched_sizes = PR_SIZES;
   std::function<void(double)> progress;  // fraction done, for a progress bar
 };
 
@@ -32,10 +34,10 @@ struct PrBakeStats {
   uint32_t submits = 0;
 };
 
-// One measured point of the PR diagram.
+// One measured point of the PR diagram, at every size.
 struct PrSample {
   float lambda = 0, scale = 0;
-  PrResult pr;
+  PrSizes pr;
 };
 
 struct PrMeasurement {
@@ -43,6 +45,12 @@ struct PrMeasurement {
   std::vector<PrSample> samples;  // every (λ, s) measured, summed over views
   PrBakeStats stats;
 };
+
+// The bake's camera for one view: the bounding sphere centred, `size0` pixels across in a
+// square frame of `resolution` pixels (fov 30°).
+CameraDesc pr_view_camera(glm::vec4 bounding_sphere, float azimuth, float elevation, uint32_t size0, uint32_t resolution);
+// Pixels of the square coverage render for size0: the sphere and a border of two pixels.
+uint32_t pr_render_resolution(uint32_t size0);
 
 // `model`'s leaves must already be in priority order (a prefix is what survives).
 PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const PrBakeOptions& options = {});

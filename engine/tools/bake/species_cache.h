@@ -18,7 +18,7 @@ struct Context;
 namespace forest {
 
 // Bumped whenever a generator or the bake changes what a spec produces.
-constexpr int kSpeciesCacheVersion = 4;  // 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths
+constexpr int kSpeciesCacheVersion = 5;  // 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths; 5: PR tables per projected size
 
 // $FOREST_CACHE, else $XDG_CACHE_HOME/forest, else $HOME/.cache/forest, else build-less
 // fallback ".forest-cache" in the current folder.

@@ -29,7 +29,7 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
 
   uint32_t messages_before = ctx.validation_messages.load();
   PrBakeOptions po;
-  po.resolution = settings.resolution;
+  po.size0 = settings.resolution;
   po.views = settings.views;
   po.progress = settings.progress;
   PrMeasurement pm = measure_pr_tables(ctx, model, po);
@@ -40,7 +40,9 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
   model.bake.pr_tables = pm.tables;
   model.bake.pr_samples.clear();  // the PR diagram behind the tables
   for (const PrSample& ps : pm.samples)
-    model.bake.pr_samples.push_back({ps.lambda, ps.scale, ps.pr.precision(), ps.pr.recall()});
+    for (uint32_t b = 0; b < PR_SIZES; ++b)
+      model.bake.pr_samples.push_back({ps.lambda, ps.scale, pr_size(pm.tables.size0, b), ps.pr[b].precision(),
+                                       ps.pr[b].recall()});
   TreeBakeResult r;
   r.measurement = std::move(pm);
   r.hull_seconds = std::chrono::duration<double>(t_hull - t0).count();

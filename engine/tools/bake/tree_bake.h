@@ -16,7 +16,7 @@ struct TreeBakeSettings {
   std::string priority = "combined";  // random, density, orientation, combined, layered
   std::optional<uint64_t> seed;       // default: the model's seed
   uint32_t views = 6;
-  uint32_t resolution = 256;
+  uint32_t resolution = 512;  // PrBakeOptions::size0
   std::function<void(double)> progress;  // fraction of the PR measurement done
 };
 

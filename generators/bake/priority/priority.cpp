@@ -10,6 +10,7 @@
 #include "generators/bake/hull/hull_field.h"
 #include "generators/bake/hull/hull_nearest.h"
 #include "generators/bake/priority/priority_density.h"
+#include "generators/bake/priority/priority_stratify.h"
 #include "generators/core/input_error.h"
 #include "generators/core/rng.h"
 
@@ -105,8 +106,10 @@ std::vector<uint32_t> priority_order(const TreeModel& model, const Hull& hull, P
   return priority_order(model, hull, p, seed, PriorityParams{});
 }
 
-std::vector<uint32_t> priority_order(const TreeModel& model, const Hull& hull, Priority p,
-                                     uint64_t seed, const PriorityParams& params) {
+namespace {
+
+std::vector<uint32_t> paper_order(const TreeModel& model, const Hull& hull, Priority p, uint64_t seed,
+                                  const PriorityParams& params) {
   const size_t n = model.leaves.size();
   if (p == Priority::random) return shuffled(n, seed);
   require_hull(model, hull, p);
@@ -142,6 +145,17 @@ std::vector<uint32_t> priority_order(const TreeModel& model, const Hull& hull, P
     for (size_t i = 0; i < n; ++i) key[i] = double(s.p_combined[i]) + params.combined_jitter * rng.symmetric();
   }
   return sort_descending(key, seed);
+}
+
+}  // namespace
+
+std::vector<uint32_t> priority_order(const TreeModel& model, const Hull& hull, Priority p,
+                                     uint64_t seed, const PriorityParams& params) {
+  std::vector<uint32_t> order = paper_order(model, hull, p, seed, params);
+  if (p == Priority::random || !(params.stratify_cell > 0.0f) || order.empty()) return order;
+  std::vector<glm::vec3> centers(order.size());
+  for (size_t i = 0; i < order.size(); ++i) centers[i] = leaf_center(model.leaves[i]);
+  return stratify_order(order, centers, params.stratify_cell * hull.radius, seed);
 }
 
 void reorder_leaves(TreeModel& model, std::span<const uint32_t> order) {

@@ -25,6 +25,9 @@ struct PriorityParams {
   // folded into [0, 90°] (a card whose back faces out covers the same pixels).
   bool two_sided = true;
   float combined_jitter = 0.02f;  // uniform ± jitter added to the normalized P_combined
+  // Every order but random (Cook's) is stratified in cubic cells of this edge, as a fraction
+  // of the hull's metaball radius (priority_stratify.h says why); 0 gives the paper's orders.
+  float stratify_cell = 0.5f;
 };
 
 // Per-leaf quantities behind the orders (index-aligned with model.leaves).
