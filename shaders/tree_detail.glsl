@@ -24,12 +24,19 @@ void size_blocks(Model m, float p, out uint b0, out uint b1, out float w) {
   w = pos - float(b0);
 }
 
-// s_opt(λ, p), bilinear in λ and log2 p.
+// s_opt(λ, p), bilinear in λ and log2 p. Below the first measured λ (1/20) the tables know
+// nothing (s_opt[0] only repeats s_opt[1]), and holding s there shrank the leaves' total area
+// with λ: far trees, pruned to a few percent, thinned out (fig7_17's far frames: Q 0.06–0.12
+// under Cook's). There s goes over to Cook's 1/λ, continuously: 1/λ · mix(1, λ₁ s_opt(λ₁), λ/λ₁).
 float opt_area_scale(Model m, float lambda, float p) {
   uint b0, b1;
   float w;
   size_blocks(m, p, b0, b1, w);
-  return mix(lambda_table(m, b0, 0, lambda), lambda_table(m, b1, 0, lambda), w);
+  const float first = 1.0 / float(S_SAMPLES - 1);
+  float s = mix(lambda_table(m, b0, 0, max(lambda, first)), lambda_table(m, b1, 0, max(lambda, first)), w);
+  if (lambda >= first) return s;
+  float l = max(lambda, 1e-3);
+  return mix(1.0, first * s, l / first) / l;
 }
 
 // λ_opt(d, p), bilinear in the d table position and log2 p.

@@ -115,6 +115,14 @@ std::string tolerance_text() {
 }
 
 
+std::string trees_csv(const ModeSummary& m) {
+  std::ostringstream o;
+  for (const BenchFrame& f : m.frames)
+    for (size_t k = 0; k < f.tree_q.size(); ++k)
+      o << f.frame << ',' << f.time << ',' << f.tree_size[k] << ',' << f.tree_q[k] << '\n';
+  return o.str().empty() ? "" : "frame,time_s,size_px,q\n" + o.str();
+}
+
 TreePr tree_pr(const ModeSummary& m) {
   TreePr t;
   for (const BenchFrame& f : m.frames) {

@@ -387,6 +387,7 @@ void write_bench_results(const BenchReport& r) {
     print_mode_row(m, cook, v);
     md << markdown_row(m, cook, v);
     write_text_file(out / ("frames_" + m.mode.name + ".csv"), frames_csv(m));
+    if (std::string trees = trees_csv(m); !trees.empty()) write_text_file(out / ("trees_" + m.mode.name + ".csv"), trees);
   }
   for (const ModeSummary& m : r.modes) {
     if (!m.mode.occlusion) continue;

@@ -267,12 +267,15 @@ void fill_scale_tables(PrSizeTables& t, const std::map<Point, PrSizes>& sums, co
 }
 
 // λ_opt(d) at size b: the smallest λ whose optimal quality matches Cook's at λ_Cook(d)
-// (Neubert 2012 §7.2.5), both seen at that size.
+// (Neubert 2012 §7.2.5), both seen at that size. Where λ_Cook(d) is below the first measured
+// λ (1/20), q_opt there would be a straight line to Q = 0 at λ = 0, a guess: λ_opt = λ_Cook, and
+// the run time's s goes over to Cook's 1/λ (tree_detail.glsl), so opt is Cook there.
 void fill_lambda_opt(PrSizeTables& t, std::map<Point, PrSizes>& sums, const std::vector<float>& cook, uint32_t b) {
   t.lambda_opt.resize(D_SAMPLES);
   for (uint32_t j = 0; j < D_SAMPLES; ++j) {
     float lc = cook[j];
-    t.lambda_opt[j] = lc <= 0.0f ? 0.0f : smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}][b].quality(), lc);
+    t.lambda_opt[j] = lc < pr_lambda(1) ? std::min(lc, j > 0 ? t.lambda_opt[j - 1] : lc)
+                                        : smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}][b].quality(), lc);
   }
   t.lambda_opt[0] = 1.0f;
   t.lambda_opt = non_increasing(t.lambda_opt);
