@@ -168,7 +168,10 @@ std::string table_7_4_note(const std::vector<ModeSummary>& modes,
   p.width = 900;
   for (const ModeSummary& m : modes) {
     const ModeSummary* cook = cook_of(m);
-    if (!cook || cook == &m || m.mode.prune_mode == PruneMode::full || m.mode.occlusion) continue;
+    // Modes that aim at Cook's quality: not full, not target (its own Q), not with occlusion.
+    if (!cook || cook == &m || m.mode.prune_mode == PruneMode::full || m.mode.prune_mode == PruneMode::target ||
+        m.mode.occlusion)
+      continue;
     PerFrameVsCook v = per_frame_vs_cook(m, *cook);
     if (v.saved.empty()) continue;
     if (p.series.empty())
