@@ -43,6 +43,21 @@ Scene model_scene(const TreeModel& model, uint32_t count, float radius) {
   return scene_of(std::move(desc), {model});
 }
 
+// 40 broadleaf trees baked from `views` views at `resolution` px, pruned over 120 m, the
+// camera 70 m out looking in.
+Scene baked_grove(vk::Context& ctx, uint32_t views, uint32_t resolution) {
+  TreeModel m = broadleaf();
+  TreeBakeSettings bake;
+  bake.views = views;
+  bake.resolution = resolution;
+  bake_tree_model(ctx, m, bake);
+  Scene s = model_scene(m, 40, 45.0f);
+  s.desc.prune_distance = 120.0f;
+  s.desc.camera.position = glm::vec3(0.0f, 8.0f, -70.0f);
+  s.desc.camera.target = glm::vec3(0.0f, 4.0f, 0.0f);
+  return s;
+}
+
 }  // namespace
 
 TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
@@ -118,15 +133,7 @@ TEST_F(SceneGpuTest, OptMatchesCookQualityWithFewerLeaves) {
   // Neubert 2012 §7.2.5: λ_opt(d) is the smallest λ whose PR quality (with s_opt) reaches
   // Cook's quality at d. So on a forest view, opt must reach Cook's Q against the full
   // image while drawing fewer leaves.
-  TreeModel m = broadleaf();
-  TreeBakeSettings bake;
-  bake.views = 1;
-  bake.resolution = 64;
-  bake_tree_model(ctx_, m, bake);
-  Scene s = model_scene(m, 40, 45.0f);
-  s.desc.prune_distance = 120.0f;
-  s.desc.camera.position = glm::vec3(0.0f, 8.0f, -70.0f);
-  s.desc.camera.target = glm::vec3(0.0f, 4.0f, 0.0f);
+  Scene s = baked_grove(ctx_, 1, 64);
   Renderer r(ctx_, s, 160, 120, 1);
   FrameSettings full, cook, opt;
   cook.prune_mode = PruneMode::cook;
@@ -153,15 +160,7 @@ TEST_F(SceneGpuTest, OptKeepsCooksQualityAtEveryResolution) {
   // The run time looks λ_opt up by each tree's projected size as well as d (issue 20): the
   // same view at 4 × the pixels prunes less where the trees are larger on screen, and opt
   // keeps Cook's quality at both within the one "equal quality" tolerance, −0.002.
-  TreeModel m = broadleaf();
-  TreeBakeSettings bake;
-  bake.views = 4;
-  bake.resolution = 256;
-  bake_tree_model(ctx_, m, bake);
-  Scene s = model_scene(m, 40, 45.0f);
-  s.desc.prune_distance = 120.0f;
-  s.desc.camera.position = glm::vec3(0.0f, 8.0f, -70.0f);
-  s.desc.camera.target = glm::vec3(0.0f, 4.0f, 0.0f);
+  Scene s = baked_grove(ctx_, 4, 256);
   uint32_t opt_leaves[2] = {0, 0};
   const uint32_t widths[2] = {160, 640};
   for (int k = 0; k < 2; ++k) {

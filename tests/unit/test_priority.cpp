@@ -61,6 +61,21 @@ Crown sphere_crown(size_t n, uint64_t seed) {
   return c;
 }
 
+// The sparse crown of sphere_crown(3000, 6) with a dense clump of 1500 leaves inside
+// (indices 3000 and up, not radial).
+Crown clumped_crown() {
+  Crown c = sphere_crown(3000, 6);
+  Rng rng(6, 2);
+  for (int i = 0; i < 1500; ++i) {
+    LeafPlacement l;
+    l.scale = 0.02f;
+    l.position = glm::vec3(0.4f, 3.3f, 0.1f) + 0.18f * glm::vec3(rng.symmetric(), rng.symmetric(), rng.symmetric());
+    c.model.leaves.push_back(l);
+    c.radial.push_back(false);
+  }
+  return c;
+}
+
 bool is_permutation(const std::vector<uint32_t>& order, size_t n) {
   if (order.size() != n) return false;
   std::vector<bool> seen(n, false);
@@ -174,15 +189,7 @@ TEST(Priority, OrientationPutsOutwardFacingLeavesFirst) {
 
 TEST(Priority, DensityPutsLowDensityLeavesFirst) {
   // A sparse crown with a dense clump inside.
-  Crown c = sphere_crown(3000, 6);
-  Rng rng(6, 2);
-  for (int i = 0; i < 1500; ++i) {
-    LeafPlacement l;
-    l.scale = 0.02f;
-    l.position = glm::vec3(0.4f, 3.3f, 0.1f) + 0.18f * glm::vec3(rng.symmetric(), rng.symmetric(), rng.symmetric());
-    c.model.leaves.push_back(l);
-    c.radial.push_back(false);
-  }
+  Crown c = clumped_crown();
   Hull hull = build_hull(c.model.leaves, 4.0f);
   std::vector<uint32_t> order = priority_order(c.model, hull, Priority::density, 3, kPaper);
   const size_t n = order.size(), fifth = n / 5;
@@ -295,14 +302,7 @@ TEST(Priority, LayeredRemovesLikeDensityThenKeepsByOrientation) {
 TEST(Priority, StratifiedOrdersKeepEveryRegionInProportion) {
   // A crown with a dense clump: the paper's density order empties the clump first, so a
   // short prefix under-represents it; stratified, every cell keeps about λn of its n leaves.
-  Crown c = sphere_crown(3000, 6);
-  Rng rng(6, 2);
-  for (int i = 0; i < 1500; ++i) {
-    LeafPlacement l;
-    l.scale = 0.02f;
-    l.position = glm::vec3(0.4f, 3.3f, 0.1f) + 0.18f * glm::vec3(rng.symmetric(), rng.symmetric(), rng.symmetric());
-    c.model.leaves.push_back(l);
-  }
+  Crown c = clumped_crown();
   Hull hull = build_hull(c.model.leaves, 4.0f);
   const size_t n = c.model.leaves.size();
   const float cell = 0.5f * hull.radius;
