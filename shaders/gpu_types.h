@@ -95,7 +95,7 @@ using mat4 = glm::mat4;
 // x ≡ y ≡ prune::lattice_offset(b) (mod 2^b): a render at 2^-b the resolution, shifted by half a
 // pixel of the full one. The lattices of different b share no pixel.
 
-#define MAX_BRANCH_LODS 4      // LOD0 + up to 3 simplified levels per model
+#define MAX_BRANCH_LODS 8      // LOD0 + up to 7 coarser levels per model (structural_lod.h)
 #define LEAF_TEXTURE_SIZE 256  // every model's leaf texture is one layer of a 2D array
 #define BARK_TEXTURE_SIZE 256  // every bark's albedo and normal map are one layer of two 2D arrays
 
@@ -168,10 +168,10 @@ GPU_STRUCT Model {
   vec4 bark_color;           // linear rgb, times the bark albedo texture (white when it holds the colour)
   vec4 leaf_color;           // linear rgb
   // Branch LOD chain: [0] full detail; lod_error = model-space error in meters, non-decreasing.
-  uvec4 lod_first_index;
-  uvec4 lod_index_count;
-  ivec4 lod_vertex_offset;
-  vec4 lod_error;
+  uint lod_first_index[MAX_BRANCH_LODS];
+  uint lod_index_count[MAX_BRANCH_LODS];
+  int lod_vertex_offset[MAX_BRANCH_LODS];
+  float lod_error[MAX_BRANCH_LODS];
   uint lod_count;
   uint leaf_texture_layer;
   uint card_first_index;     // the one leaf card mesh of this model

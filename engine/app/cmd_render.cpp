@@ -91,9 +91,9 @@ void print_render_stats(const FrameStats& stats, const Scene& scene, const Rende
               "GPU cull %.2f ms, draw %.1f ms, frame %.1f ms\n",
               ms(t.start, t.scene), ms(t.scene, t.upload), ms(t.upload, t.done), stats.cull_ms, stats.draw_ms,
               stats.frame_ms);
-  std::printf("branches: %u triangles drawn; trees per LOD: %u %u %u %u; mean lambda %.3f\n",
-              stats.branch_triangles, stats.lod_draws[0], stats.lod_draws[1], stats.lod_draws[2],
-              stats.lod_draws[3], stats.mean_lambda);
+  std::printf("branches: %u triangles drawn; trees per LOD:", stats.branch_triangles);
+  for (uint32_t n : stats.lod_draws) std::printf(" %u", n);
+  std::printf("; mean lambda %.3f\n", stats.mean_lambda);
   FullDetailSize full = full_detail_size(scene);
   std::printf("instances visible %u of %u; leaves drawn %u; full detail: %llu triangles, %llu vertices "
               "(%.2f B as input assembly counts them, 3 per triangle)\n",

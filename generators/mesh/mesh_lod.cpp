@@ -1,8 +1,12 @@
 #include "generators/mesh/mesh_lod.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <tuple>
 
 #include <meshoptimizer.h>
+#include <tbb/parallel_for.h>
 
 namespace forest {
 
@@ -142,37 +146,153 @@ void optimize_mesh(Mesh& mesh) {
   mesh.indices = std::move(indices);
 }
 
+MeshLod simplify_to(const Mesh& source, size_t target_triangles, float max_error) {
+  MeshLod lod;
+  if (source.indices.empty()) return lod;
+  const Welded welded = weld(source);
+  const UvScale uv = uv_scale(source);
+  const float scale = meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3));
+  std::vector<uint32_t> indices(welded.indices.size());
+  float relative = 0.0f;
+  const size_t count = meshopt_simplify(indices.data(), welded.indices.data(), welded.indices.size(),
+                                        &welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3),
+                                        std::min(welded.indices.size(), std::max<size_t>(1, target_triangles) * 3),
+                                        scale > 0.0f ? max_error / scale : 0.0f, meshopt_SimplifyLockBorder,
+                                        &relative);
+  indices.resize(count);
+  lod.mesh.vertices = source.vertices;
+  choose_variants(source, welded, uv, indices, lod.mesh.vertices);
+  lod.mesh.indices = std::move(indices);
+  optimize_mesh(lod.mesh);
+  lod.error = relative * scale;
+  return lod;
+}
+
+std::vector<float> collapse_errors(const Mesh& mesh, std::span<const size_t> targets, float max_error) {
+  std::vector<float> errors(targets.size(), 0.0f);
+  if (mesh.indices.empty()) return errors;
+  const Welded welded = weld(mesh);
+  const float scale = meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3));
+  tbb::parallel_for(size_t(0), targets.size(), [&](size_t i) {
+    std::vector<uint32_t> indices(welded.indices.size());
+    float relative = 0.0f;
+    meshopt_simplify(indices.data(), welded.indices.data(), welded.indices.size(), &welded.positions[0].x,
+                     welded.positions.size(), sizeof(glm::vec3),
+                     std::min(welded.indices.size(), std::max<size_t>(1, targets[i]) * 3),
+                     scale > 0.0f ? max_error / scale : 0.0f, meshopt_SimplifyLockBorder, &relative);
+    errors[i] = relative * scale;
+  });
+  return errors;
+}
+
 std::vector<MeshLod> simplify_lods(const Mesh& lod0, std::span<const float> fractions,
                                    float max_relative_error) {
   std::vector<MeshLod> lods;
   if (lod0.indices.empty()) return lods;
-  const Welded welded = weld(lod0);
-  const UvScale uv = uv_scale(lod0);
-  const float scale = meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3));
+  const float scale = meshopt_simplifyScale(&lod0.vertices[0].position.x, lod0.vertices.size(), sizeof(Vertex));
   const size_t triangles0 = lod0.indices.size() / 3;
   size_t previous = triangles0;
   float error = 0.0f;
   for (float fraction : fractions) {
-    size_t target = std::max<size_t>(1, size_t(double(triangles0) * double(fraction))) * 3;
-    std::vector<uint32_t> indices(lod0.indices.size());
-    float relative = 0.0f;
-    size_t count = meshopt_simplify(indices.data(), welded.indices.data(), welded.indices.size(),
-                                    &welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3), target,
-                                    max_relative_error, meshopt_SimplifyLockBorder, &relative);
-    size_t triangles = count / 3;
+    MeshLod lod = simplify_to(lod0, size_t(double(triangles0) * double(fraction)), max_relative_error * scale);
+    const size_t triangles = lod.mesh.indices.size() / 3;
     if (triangles == 0 || triangles * 10 > previous * 9) break;
-    indices.resize(count);
-    MeshLod lod;
-    lod.mesh.vertices = lod0.vertices;
-    choose_variants(lod0, welded, uv, indices, lod.mesh.vertices);
-    lod.mesh.indices = std::move(indices);
-    optimize_mesh(lod.mesh);
-    error = std::max(error, relative * scale);
+    error = std::max(error, lod.error);
     lod.error = error;
     lods.push_back(std::move(lod));
     previous = triangles;
   }
   return lods;
+}
+
+namespace {
+
+// A triangle by its corner positions: the sorted corners (the key shared by both windings)
+// and its winding relative to that order.
+using Corner = std::tuple<float, float, float>;
+struct TriangleKey {
+  std::array<Corner, 3> sorted;
+  bool flipped = false;
+};
+
+TriangleKey triangle_key(const Mesh& m, size_t t) {
+  std::array<Corner, 3> c;
+  for (size_t k = 0; k < 3; ++k) {
+    const glm::vec3& p = m.vertices[m.indices[t + k]].position;
+    c[k] = {p.x, p.y, p.z};
+  }
+  // Rotate to start at the smallest corner (winding kept); the winding is then whether the
+  // second corner is the smaller of the other two.
+  size_t first = size_t(std::min_element(c.begin(), c.end()) - c.begin());
+  const Corner& b = c[(first + 1) % 3];
+  const Corner& d = c[(first + 2) % 3];
+  TriangleKey key;
+  key.flipped = d < b;
+  key.sorted = c;
+  std::sort(key.sorted.begin(), key.sorted.end());
+  return key;
+}
+
+// Per corner-position set, the triangles (index of their first index) of each winding.
+std::map<std::array<Corner, 3>, std::array<std::vector<size_t>, 2>> triangles_by_corners(const Mesh& m) {
+  std::map<std::array<Corner, 3>, std::array<std::vector<size_t>, 2>> groups;
+  for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    TriangleKey k = triangle_key(m, t);
+    groups[k.sorted][k.flipped ? 1 : 0].push_back(t);
+  }
+  return groups;
+}
+
+}  // namespace
+
+size_t count_back_to_back(const Mesh& mesh) {
+  size_t n = 0;
+  for (const auto& [corners, sides] : triangles_by_corners(mesh))
+    if (!sides[0].empty() && !sides[1].empty()) n += sides[0].size() + sides[1].size();
+  return n;
+}
+
+size_t remove_back_to_back(Mesh& mesh) {
+  std::vector<char> drop(mesh.indices.size() / 3, 0);
+  for (const auto& [corners, sides] : triangles_by_corners(mesh)) {
+    // Opposite windings cancel pair by pair; of what is left of one winding, one copy stays.
+    const size_t a = sides[0].size(), b = sides[1].size();
+    const int keep_side = a > b ? 0 : (b > a ? 1 : -1);
+    for (int s = 0; s < 2; ++s)
+      for (size_t i = 0; i < sides[size_t(s)].size(); ++i)
+        if (s != keep_side || i > 0) drop[sides[size_t(s)][i] / 3] = 1;
+  }
+  std::vector<uint32_t> kept;
+  kept.reserve(mesh.indices.size());
+  for (size_t t = 0; t < drop.size(); ++t)
+    if (!drop[t]) kept.insert(kept.end(), {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]});
+  const size_t removed = (mesh.indices.size() - kept.size()) / 3;
+  mesh.indices = std::move(kept);
+  return removed;
+}
+
+MeshLod sloppy_lod(const Mesh& source, size_t target_triangles) {
+  MeshLod lod;
+  if (source.indices.empty()) return lod;
+  const Welded welded = weld(source);
+  const UvScale uv = uv_scale(source);
+  const float scale = meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3));
+  std::vector<uint32_t> indices(welded.indices.size());
+  float relative = 0.0f;
+  // target_error 1 (the whole model): the triangle count is what stops it.
+  size_t count = meshopt_simplifySloppy(indices.data(), welded.indices.data(), welded.indices.size(),
+                                        &welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3),
+                                        std::min(welded.indices.size(), std::max<size_t>(1, target_triangles) * 3),
+                                        1.0f, &relative);
+  indices.resize(count);
+  lod.mesh.vertices = source.vertices;
+  choose_variants(source, welded, uv, indices, lod.mesh.vertices);
+  lod.mesh.indices = std::move(indices);
+  remove_back_to_back(lod.mesh);
+  optimize_mesh(lod.mesh);
+  if (lod.mesh.indices.empty()) lod.mesh.vertices.clear();
+  lod.error = relative * scale;
+  return lod;
 }
 
 }  // namespace forest

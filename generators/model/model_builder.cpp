@@ -10,6 +10,7 @@
 #include "generators/mesh/bark_texture.h"
 #include "generators/mesh/mesh_lod.h"
 #include "generators/mesh/mesher.h"
+#include "generators/mesh/structural_lod.h"
 
 namespace forest {
 
@@ -58,10 +59,10 @@ TreeModel build_model(const TreeGraph& graph, const LookKeys& look, const ShootD
   mesher.max_sides = look.ring_sides_max;
   mesher.bark_tile_meters = bark_tile_meters(look.bark_pattern);
   TreeModel model;
-  model.branches = mesh_branches(graph, mesher);
+  BranchMeshInfo info;
+  model.branches = mesh_branches(graph, mesher, &info);
   optimize_mesh(model.branches);
-  static constexpr float kLodFractions[] = {0.5f, 0.25f, 0.12f};
-  model.branch_lods = simplify_lods(model.branches, kLodFractions);
+  model.branch_lods = structural_lods(graph, mesher, model.branches, info);
   model.leaf_card = make_foliage_card(shoot);
   model.leaf_texture = make_foliage_texture(shoot);
   model.leaves = graph.leaves;

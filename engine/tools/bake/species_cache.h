@@ -18,8 +18,9 @@ struct Context;
 namespace forest {
 
 // Bumped whenever a generator or the bake changes what a spec produces.
-constexpr int kSpeciesCacheVersion = 6;  // 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths; 5: PR tables per
-                                         // projected size; 6: λ_opt = λ_Cook below the first measured λ
+constexpr int kSpeciesCacheVersion = 7;  // 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths; 5: PR tables per
+                                         // projected size; 6: λ_opt = λ_Cook below the first measured λ;
+                                         // 7: structural branch LODs
 
 // $FOREST_CACHE, else $XDG_CACHE_HOME/forest, else $HOME/.cache/forest, else build-less
 // fallback ".forest-cache" in the current folder.
