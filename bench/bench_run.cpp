@@ -16,7 +16,7 @@ const std::vector<std::string>& bench_mode_names() {
   static const std::vector<std::string> names = {"full",          "cook",           "cook-random", "opt",
                                                   "opt-random",    "opt-density",    "opt-orientation",
                                                   "opt-combined",  "opt-layered",    "opt-occl",
-                                                  "target"};
+                                                  "opt-occl-instanced", "target"};
   return names;
 }
 
@@ -27,6 +27,7 @@ std::optional<BenchMode> bench_mode(const std::string& name) {
   // -occl (occlusion feedback); cook-random: Cook on the random order.
   std::string base = name;
   if (name == "opt-occl") base = "opt", m.occlusion = true;
+  if (name == "opt-occl-instanced") base = "opt", m.occlusion = true, m.instanced_leaves = true;
   if (name == "cook-random") base = "cook", m.priority = "random";
   if (name.rfind("opt-", 0) == 0 && parse_priority(name.substr(4))) base = "opt", m.priority = name.substr(4);
   std::optional<PruneMode> mode = parse_prune_mode(base);
@@ -81,6 +82,7 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
   FrameSettings settings = scene_frame_settings(scene.desc);
   settings.prune_mode = mode.prune_mode;
   settings.occlusion = mode.occlusion;
+  settings.instanced_leaves = mode.instanced_leaves;
   settings.shadows = mode.shadows;
   settings.mask = settings.lambda_view = settings.wireframe = false;
   uint64_t terrain_and_sky = scene.terrain.mesh().indices.size() / 3 + 1;  // sky: one full-screen triangle

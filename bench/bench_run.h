@@ -16,7 +16,8 @@ namespace forest {
 // full, cook, opt (the scene's baked tables, leaves in the scene's [bake] priority order),
 // opt-<order> for every priority order (opt-random, opt-density, opt-orientation,
 // opt-combined, opt-layered: opt on models baked with that order; the caller builds that
-// scene), opt-occl (opt + depth-buffer occlusion feedback).
+// scene), opt-occl (opt + depth-buffer occlusion feedback), opt-occl-instanced (opt-occl with
+// the leaves drawn as instances of their card instead of by vertex pulling).
 // cook-random is Cook et al. as published, whatever the scene's order: random order, s = 1/λ.
 struct BenchMode {
   std::string name;
@@ -24,6 +25,7 @@ struct BenchMode {
   bool occlusion = false;
   std::string priority;  // the leaf order the models are baked with; empty: the scene's [bake] priority
   bool shadows = false;  // the sun's shadow maps (--shadows); the name then ends in "+shadows"
+  bool instanced_leaves = false;  // leaves as card instances, not pulled (opt-occl-instanced)
 };
 std::optional<BenchMode> bench_mode(const std::string& name);
 const std::vector<std::string>& bench_mode_names();

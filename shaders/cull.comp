@@ -1,14 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // One thread per tree instance: frustum test of the bounding sphere, branch LOD by projected
-// error, then append the compacted indirect draws (branches, and the model's leaves as
-// instances of its card). With occlusion on, λ is scaled by the tree's visibility in the
+// error, then append the compacted indirect draws (branches, and the model's leaves:
+// leaf_draw.glsl). With occlusion on, λ is scaled by the tree's visibility in the
 // previous frame (occlusion.glsl) and trees hidden there entirely are not drawn; the leaves
 // this drops from a partly visible tree become a TailJob for tail_cull.comp, which keeps
 // those the previous frame could see.
 #include "common.glsl"
 #include "occlusion.glsl"
 #include "tree_detail.glsl"
+#include "leaf_draw.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
@@ -75,8 +76,8 @@ void main() {
       if (j < frame.tail_job_capacity) {  // else no room left: the whole prefix is drawn
         uint l = atomicAdd(counts.leaf_draws, 1);
         tail_jobs[j] = TailJob(frame.leaf_command_base + l, m.leaf_offset + k_occl, m.leaf_offset + k, base);
-        commands[frame.leaf_command_base + l] = DrawCommand(m.card_index_count, 0, m.card_first_index,
-            m.card_vertex_offset, base, i, lambda, area_scale, lambda * st.occlusion, LEAF_LIST_TAIL);
+        commands[frame.leaf_command_base + l] = leaf_draw(m, 0, base, i, lambda, area_scale, lambda * st.occlusion,
+                                                          LEAF_LIST_TAIL);
         k = k_occl;
       }
     }
@@ -92,7 +93,7 @@ void main() {
   if (k > 0) {
     uint l = atomicAdd(counts.leaf_draws, 1);
     atomicAdd(counts.leaves_drawn, k);
-    commands[frame.leaf_command_base + l] = DrawCommand(m.card_index_count, k, m.card_first_index,
-        m.card_vertex_offset, m.leaf_offset, i, lambda, area_scale, shown_lambda, LEAF_LIST_DIRECT);
+    commands[frame.leaf_command_base + l] = leaf_draw(m, k, m.leaf_offset, i, lambda, area_scale, shown_lambda,
+                                                      LEAF_LIST_DIRECT);
   }
 }

@@ -70,6 +70,12 @@ using mat4 = glm::mat4;
 #define VIEW_LAMBDA 1  // color trees by their detail level λ (Fig 7.15)
 #define VIEW_MASK 2    // write coverage only (white): PR measurement
 #define VIEW_SHADOW 4  // grey = the sun's shadow-map visibility (tests, debugging)
+#define VIEW_LEAF_INSTANCED 8  // leaf draws as instances of the card (else pulled: leaf_draw.glsl)
+
+// Leaf draws by vertex pulling (leaf_draw.glsl): each leaf is 4 consecutive vertex indices
+// 4·leaf + corner, drawn through a shared index pattern of LEAF_QUAD_INDICES per leaf
+// (corners 0 1 2, 0 2 3) at Model.leaf_quad_first_index; one draw per tree, no instancing.
+#define LEAF_QUAD_INDICES 6
 
 // Cascaded shadow maps of the sun (shadow_pass.h): cascades over [near, shadow_distance].
 #define SHADOW_CASCADES 3
@@ -167,6 +173,9 @@ GPU_STRUCT Model {
   vec4 bounding_sphere;      // model space, xyz center, w radius
   vec4 bark_color;           // linear rgb, times the bark albedo texture (white when it holds the colour)
   vec4 leaf_color;           // linear rgb
+  // The leaf card's corners in the order of the pulled quad pattern (LEAF_QUAD_INDICES):
+  // xy = card position (z = 0, normal +Z), zw = uv.
+  vec4 card_corners[4];
   // Branch LOD chain: [0] full detail; lod_error = model-space error in meters, non-decreasing.
   uint lod_first_index[MAX_BRANCH_LODS];
   uint lod_index_count[MAX_BRANCH_LODS];
@@ -190,6 +199,7 @@ GPU_STRUCT Model {
   // baked, leaf.vert then uses the exit distance from the bounding sphere with a default κ.
   float crown_extinction;
   float pr_size0;            // projected size (px across the bounding sphere) of the tables' size 0
+  uint leaf_quad_first_index;  // the shared quad index pattern in the index buffer (pulled leaf draws)
 };
 
 // One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.
@@ -226,8 +236,8 @@ struct TailJob {
 };
 
 // DrawCommand.leaf_list: where a leaf draw finds its leaves.
-#define LEAF_LIST_DIRECT 0  // gl_InstanceIndex is the leaf (a prefix of the model's leaves)
-#define LEAF_LIST_TAIL 1    // gl_InstanceIndex indexes the tail leaf buffer, which holds the leaf
+#define LEAF_LIST_DIRECT 0  // the draw's item (instance, or pulled vertex / 4) is the leaf (a prefix of the model's leaves)
+#define LEAF_LIST_TAIL 1    // the item indexes the tail leaf buffer, which holds the leaf
 
 // VkDrawIndexedIndirectCommand followed by the tree instance the draw belongs to.
 struct DrawCommand {

@@ -13,6 +13,7 @@
 // Branch LOD: the coarsest level whose error stays under that footprint too.
 #include "common.glsl"
 #include "tree_detail.glsl"
+#include "leaf_draw.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
@@ -47,8 +48,8 @@ void main() {
     if (k > 0) {
       uint l = atomicAdd(counts.shadow_leaf_draws[c], 1);
       atomicAdd(counts.shadow_leaves[c], k);
-      commands[base + frame.instance_count + l] = DrawCommand(m.card_index_count, k, m.card_first_index,
-          m.card_vertex_offset, m.leaf_offset, i, lambda, area_scale, lambda, LEAF_LIST_DIRECT);
+      commands[base + frame.instance_count + l] = leaf_draw(m, k, m.leaf_offset, i, lambda, area_scale, lambda,
+                                                            LEAF_LIST_DIRECT);
     }
   }
 }

@@ -3,9 +3,10 @@
 // [ours] The leaves occlusion takes from a partly hidden tree, tested one by one (see
 // cull.comp): one workgroup per TailJob tests each leaf's bounding sphere against the
 // previous frame's depth pyramid and appends those it could see, in priority order, to the
-// tail leaf buffer. Their count becomes the instance count of the job's leaf draw.
+// tail leaf buffer. Their count becomes the leaf count of the job's draw (set_leaf_count).
 #include "common.glsl"
 #include "occlusion.glsl"
+#include "leaf_draw.glsl"
 
 layout(local_size_x = TAIL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) buffer Commands { DrawCommand commands[]; };
@@ -48,7 +49,7 @@ void main() {
     barrier();  // every thread has read scan before the next round writes it
   }
   if (t == 0) {
-    commands[job.command].instance_count = kept;
+    set_leaf_count(commands[job.command], kept);
     uint dropped = job.end_leaf - job.first_leaf - kept;
     atomicAdd(counts.leaves_drawn, kept);
     atomicAdd(counts.leaves_saved, dropped);

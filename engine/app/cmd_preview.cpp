@@ -16,11 +16,32 @@ int run_preview(const PreviewArgs& args) {
   TurntableOptions t;
   t.size = args.size;
   t.views = args.views;
-  std::vector<FrameImage> views = render_turntable(context.ctx, model, t);
-  FrameImage sheet = compose_grid(views, uint32_t(std::ceil(std::sqrt(double(views.size())))));
+  std::vector<FrameImage> views;
+  uint32_t columns = 0;
+  if (args.bark_lods) {
+    // Each level as its own leafless model seen from the first view: what the cull pass
+    // switches between (structural_lod.h).
+    t.views = 1;
+    std::vector<const Mesh*> levels{&model.branches};
+    for (const MeshLod& l : model.branch_lods) levels.push_back(&l.mesh);
+    for (const Mesh* level : levels) {
+      TreeModel bark = model;
+      bark.branches = *level;
+      bark.branch_lods.clear();
+      bark.leaves.clear();
+      std::vector<FrameImage> v = render_turntable(context.ctx, bark, t);
+      views.push_back(std::move(v.front()));
+      std::printf("LOD%zu: %zu triangles\n", views.size() - 1, level->indices.size() / 3);
+    }
+    columns = uint32_t(views.size());
+  } else {
+    views = render_turntable(context.ctx, model, t);
+    columns = uint32_t(std::ceil(std::sqrt(double(views.size()))));
+  }
+  FrameImage sheet = compose_grid(views, columns);
   if (validation_failed(context.ctx, "image")) return 1;
   write_image(sheet, args.out);
-  std::printf("wrote %s: %u views of %s (%zu branch triangles, %zu leaves)\n", args.out.c_str(), args.views,
+  std::printf("wrote %s: %zu views of %s (%zu branch triangles, %zu leaves)\n", args.out.c_str(), views.size(),
               args.model.c_str(), model.branches.indices.size() / 3, model.leaves.size());
   return 0;
 }

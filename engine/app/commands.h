@@ -59,6 +59,7 @@ struct PreviewArgs {
   std::string device;
   uint32_t size = 384;
   uint32_t views = 4;
+  bool bark_lods = false;  // one view per bark LOD level, leaves hidden
 };
 int run_preview(const PreviewArgs& args);
 

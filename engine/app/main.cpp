@@ -88,6 +88,8 @@ Command add_preview(CLI::App& cli) {
   cmd->add_option("--out", args->out, "Output image (.png)")->required();
   cmd->add_option("--size", args->size, "Pixels per view")->check(CLI::Range(kMinBakeResolution, kMaxBakeResolution));
   cmd->add_option("--views", args->views, "Number of views around the model")->check(CLI::Range(1, 64));
+  cmd->add_flag("--bark-lods", args->bark_lods,
+                "One view per bark LOD level (LOD0 first), leaves hidden, in a row");
   cmd->add_option("--device", args->device, kDeviceHelp);
   return command(cmd, args, app::run_preview);
 }
@@ -235,7 +237,7 @@ Command add_bench(CLI::App& cli) {
   auto* cmd = cli.add_subcommand("bench", "Play a scene's camera path in several prune modes: per-frame CSV, JSON summary vs Cook, plots");
   cmd->add_option("scene", a.scene, "Scene file (TOML) with a [[path]]")->required();
   cmd->add_option("--path", a.path, "Camera path name (default: the first [[path]])");
-  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, cook-random, opt, opt-<order> (random, density, orientation, combined, layered), opt-occl, target");
+  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, cook-random, opt, opt-<order> (random, density, orientation, combined, layered), opt-occl, opt-occl-instanced (leaves as card instances, not pulled), target");
   auto* frames_opt = cmd->add_option("--frames", a.frames, "At most N frames")->check(CLI::Range(1, 1000000));
   auto* every_opt = cmd->add_option("--every", a.every, "Play every k-th frame of the path")->check(CLI::Range(1, 1000000));
   frames_opt->excludes(every_opt);

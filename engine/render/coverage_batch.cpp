@@ -39,6 +39,7 @@ void Renderer::record_coverage_render(VkCommandBuffer cmd, const FrameSlot& slot
   list.branches = branches;
   list.leaves = leaves;
   list.lattices = true;
+  list.instanced_leaves = (frame.view_flags & VIEW_LEAF_INSTANCED) != 0;
   record_scene(cmd, slot, list, false, false);
   vk::image_barrier(cmd, targets_.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,

@@ -46,12 +46,16 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
     // background (white) through the crowns. The sky underneath already wrote alpha 1.
     leaves.write_alpha = false;
   }
+  p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
+  leaves.vertex = "leaf_pulled_vert";
+  leaves.vertex_input = false;
   p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
   return p;
 }
 
 void destroy_pipelines(vk::Context& ctx, DrawPipelines& p) {
-  for (VkPipeline pipeline : {p.sky, p.terrain, p.branches, p.leaves}) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  for (VkPipeline pipeline : {p.sky, p.terrain, p.branches, p.leaves, p.leaves_instanced})
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
   p = {};
 }
 
@@ -138,6 +142,9 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
     d.depth_write = false;
     d.blend_max = true;
     d.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_ALPHA_TO_COVERAGE, 0u}, {SPEC_COVERAGE_LATTICES, 1u}};
+    p.lattice_leaves_instanced = vk::create_graphics_pipeline(ctx, layout, d);
+    d.vertex = "leaf_pulled_vert";
+    d.vertex_input = false;
     p.lattice_leaves = vk::create_graphics_pipeline(ctx, layout, d);
   }
   if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true);
@@ -148,7 +155,8 @@ void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
   destroy_pipelines(ctx, p.fill);
   destroy_pipelines(ctx, p.wire);
   vkDestroyPipeline(ctx.device, p.lattice_leaves, nullptr);
-  p.lattice_leaves = VK_NULL_HANDLE;
+  vkDestroyPipeline(ctx.device, p.lattice_leaves_instanced, nullptr);
+  p.lattice_leaves = p.lattice_leaves_instanced = VK_NULL_HANDLE;
 }
 
 void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
@@ -179,7 +187,9 @@ void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayou
   }
   if (n > 0 && list.leaves) {  // up to two leaf draws per tree: the prefix and the occlusion tail
     push(n);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, list.lattices ? pass.lattice_leaves : p.leaves);
+    VkPipeline leaves = list.lattices ? (list.instanced_leaves ? pass.lattice_leaves_instanced : pass.lattice_leaves)
+                                      : (list.instanced_leaves ? p.leaves_instanced : p.leaves);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, leaves);
     vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(n) * stride, cull.counts.buffer,
                                   offsetof(gpu::DrawCounts, leaf_draws), 2 * n, stride);
   }

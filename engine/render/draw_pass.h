@@ -12,7 +12,9 @@
 namespace forest {
 
 struct DrawPipelines {
-  VkPipeline sky = VK_NULL_HANDLE, terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE, leaves = VK_NULL_HANDLE;
+  VkPipeline sky = VK_NULL_HANDLE, terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE;
+  VkPipeline leaves = VK_NULL_HANDLE;            // vertex pulling (leaf_pulled.vert), no vertex input
+  VkPipeline leaves_instanced = VK_NULL_HANDLE;  // instances of the card (leaf.vert): VIEW_LEAF_INSTANCED
 };
 
 struct DrawPass {
@@ -20,7 +22,7 @@ struct DrawPass {
   DrawPipelines wire;  // edges only; null where the device lacks fillModeNonSolid
   // Bake coverage of the leaves at every PR size in one render (tree.frag, SPEC_COVERAGE_LATTICES):
   // no depth test, MAX blending. Single-sampled renderers only.
-  VkPipeline lattice_leaves = VK_NULL_HANDLE;
+  VkPipeline lattice_leaves = VK_NULL_HANDLE, lattice_leaves_instanced = VK_NULL_HANDLE;
 };
 
 inline constexpr Binding kDrawBindings[] = {
@@ -43,6 +45,7 @@ struct DrawList {
   bool keep_depth = false;  // store the depth (or its resolve) for the depth pyramid
   bool shadows = false;     // the shadow pass runs first (shadow_pass.h); never in coverage frames
   bool lattices = false;    // coverage frames of the bake: leaves through DrawPass::lattice_leaves
+  bool instanced_leaves = false;  // the cull pass wrote instanced leaf draws (VIEW_LEAF_INSTANCED)
 };
 
 // Records the draw (set 0 bound to the graphics bind point by the caller). Before: the cull

@@ -181,7 +181,7 @@ void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const Dr
                          VK_ACCESS_2_TRANSFER_READ_BIT);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, slot.timestamps, kCullEnd);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowStart);
-  if (list.shadows) record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_);
+  if (list.shadows) record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_, list.instanced_leaves);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowEnd);
   if (timed) begin_gpu_stats(cmd, slot.pipeline_stats, StatsPass::draw);
   record_draw_pass(cmd, draw_, layout_, slot.set, buffers_, cull_, targets_, list);
@@ -333,7 +333,8 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
   fd.prune_mode = uint32_t(settings.prune_mode);
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u) |
-                  (settings.shadow_view ? VIEW_SHADOW : 0u);
+                  (settings.shadow_view ? VIEW_SHADOW : 0u) |
+                  (settings.instanced_leaves || !buffers_.leaves_pullable ? VIEW_LEAF_INSTANCED : 0u);
   fd.camera_forward = glm::vec4(cm.forward, 0.0f);
   fd.light = glm::vec4(scene_.desc.exposure, 0.0f, 0.0f, 0.0f);
   if (settings.shadows && !settings.mask) {
@@ -397,6 +398,7 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   list.wireframe = settings.wireframe && has_wireframe() && !settings.mask;
   list.keep_depth = settings.occlusion;
   list.shadows = settings.shadows && !settings.mask;
+  list.instanced_leaves = (fd.view_flags & VIEW_LEAF_INSTANCED) != 0;
   // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.
   const bool overlay = settings.pyramid_overlay && settings.occlusion && !settings.mask && pyramid_valid_;
   record_frame(slot, output, list, settings.occlusion, overlay);

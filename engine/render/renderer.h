@@ -64,6 +64,10 @@ struct FrameSettings {
   bool shadows = false;
   // Shows the shadow map's sun visibility as grey on terrain and trees (tests, debugging).
   bool shadow_view = false;
+  // Leaves as instances of their card instead of by vertex pulling (leaf_draw.glsl): the
+  // comparison of `forest bench`'s mode opt-occl-instanced. Pulled unless set (or unless a
+  // model's card is not a quad).
+  bool instanced_leaves = false;
   // Draw this instance alone (its index in Scene::instances), every other tree culled: the
   // per-tree PR of `forest bench --tree-pr` (each tree against its own full-detail mask).
   std::optional<uint32_t> solo_instance;

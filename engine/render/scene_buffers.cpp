@@ -50,7 +50,48 @@ void add_branch_lods(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
   }
 }
 
-void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
+// The card's corners in the pulled quad pattern's order (corners 0 1 2 and 0 2 3, gpu_types.h),
+// xy position and uv; false unless the card is such a quad: 4 vertices in the plane z = 0 with
+// normal +Z, two triangles sharing an edge, wound alike.
+bool card_quad_corners(const Mesh& card, glm::vec4 out[4]) {
+  if (card.vertices.size() != 4 || card.indices.size() != 6) return false;
+  for (const Vertex& v : card.vertices)
+    if (v.position.z != 0.0f || glm::length(v.normal - glm::vec3(0.0f, 0.0f, 1.0f)) > 1e-4f) return false;
+  const uint32_t* t1 = &card.indices[0];
+  const uint32_t* t2 = &card.indices[3];
+  auto in = [](const uint32_t* t, uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; };
+  // Rotate the first triangle so that its corner off the shared edge comes second: (c0, c1, c2);
+  // the second triangle must then be (c0, c2, c3) up to rotation.
+  int lone = -1;
+  for (int k = 0; k < 3; ++k)
+    if (!in(t2, t1[k])) lone = k;
+  uint32_t fourth = 4;
+  for (int k = 0; k < 3; ++k)
+    if (!in(t1, t2[k])) fourth = t2[k];
+  if (lone < 0 || fourth > 3) return false;
+  const uint32_t c[4] = {t1[(lone + 2) % 3], t1[lone], t1[(lone + 1) % 3], fourth};
+  bool wound = false;
+  for (int r = 0; r < 3; ++r)
+    wound = wound || (t2[r] == c[0] && t2[(r + 1) % 3] == c[2] && t2[(r + 2) % 3] == c[3]);
+  if (!wound) return false;
+  for (int k = 0; k < 4; ++k) {
+    const Vertex& v = card.vertices[c[k]];
+    out[k] = glm::vec4(v.position.x, v.position.y, v.uv.x, v.uv.y);
+  }
+  return true;
+}
+
+// The shared index pattern of pulled leaf draws: leaf j's corners 4j + (0 1 2, 0 2 3).
+uint32_t append_quad_pattern(SceneArrays& a, uint32_t leaves) {
+  const uint32_t first = uint32_t(a.indices.size());
+  for (uint32_t j = 0; j < leaves; ++j)
+    for (uint32_t c : {0u, 1u, 2u, 0u, 2u, 3u}) a.indices.push_back(4 * j + c);
+  return first;
+}
+
+void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m, bool& pullable) {
+  if (!tm.leaves.empty() && !tm.leaf_card.indices.empty() && !card_quad_corners(tm.leaf_card, m.card_corners))
+    pullable = false;
   auto [cf, cv] = a.append(tm.leaf_card);
   m.card_first_index = cf;
   m.card_index_count = uint32_t(tm.leaf_card.indices.size());
@@ -149,10 +190,14 @@ SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
     m.leaf_color = glm::vec4(tm.leaf_color, 1.0f);
     m.leaf_texture_layer = uint32_t(a.models.size());
     add_branch_lods(a, tm, m);
-    add_foliage(a, tm, m);
+    add_foliage(a, tm, m, b.leaves_pullable);
     add_bake_data(a, tm, m);
     a.models.push_back(m);
   }
+  uint32_t most_leaves = 0;
+  for (const gpu::Model& m : a.models) most_leaves = std::max(most_leaves, m.leaf_count);
+  const uint32_t pattern = append_quad_pattern(a, b.leaves_pullable ? most_leaves : 0u);
+  for (gpu::Model& m : a.models) m.leaf_quad_first_index = pattern;
   b.instance_count = uint32_t(scene.instances.size());
   for (const gpu::Instance& inst : scene.instances) b.instance_leaves += scene.models[inst.model].leaves.size();
 

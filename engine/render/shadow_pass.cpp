@@ -46,6 +46,9 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
   vk::GraphicsPipelineDesc leaves = d;
   leaves.vertex = "leaf_vert";
   leaves.fragment = "shadow_leaf_frag";  // the card's alpha cut-out
+  p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
+  leaves.vertex = "leaf_pulled_vert";
+  leaves.vertex_input = false;
   p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
   p.map = vk::create_image_array(ctx, {resolution, resolution}, SHADOW_CASCADES, kShadowFormat,
                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
@@ -62,7 +65,8 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
 }
 
 void destroy_shadow_pass(vk::Context& ctx, ShadowPass& p) {
-  for (VkPipeline pipeline : {p.cull, p.terrain, p.branches, p.leaves}) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  for (VkPipeline pipeline : {p.cull, p.terrain, p.branches, p.leaves, p.leaves_instanced})
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
   for (VkImageView v : p.layers) vkDestroyImageView(ctx.device, v, nullptr);
   vkDestroySampler(ctx.device, p.sampler, nullptr);
   vk::destroy_image(ctx, p.map);
@@ -80,7 +84,7 @@ void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& p) {
 }
 
 void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayout layout, VkDescriptorSet set,
-                        const SceneBuffers& scene, const CullPass& cull) {
+                        const SceneBuffers& scene, const CullPass& cull, bool instanced_leaves) {
   const VkPipelineStageFlags2 tests = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   // After the previous frame's shading read the map.
   vk::image_barrier(cmd, p.map.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -122,7 +126,7 @@ void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayo
                                     offsetof(gpu::DrawCounts, shadow_branch_draws) + 4 * c, n, stride);
       push.command_base = base + n;
       vkCmdPushConstants(cmd, layout, kDrawPushRange.stageFlags, kDrawPushRange.offset, sizeof(push), &push);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.leaves);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, instanced_leaves ? p.leaves_instanced : p.leaves);
       vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(base + n) * stride, cull.counts.buffer,
                                     offsetof(gpu::DrawCounts, shadow_leaf_draws) + 4 * c, n, stride);
     }

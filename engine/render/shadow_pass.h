@@ -20,7 +20,8 @@ inline constexpr uint32_t kDefaultShadowResolution = 2048;
 
 struct ShadowPass {
   VkPipeline cull = VK_NULL_HANDLE;
-  VkPipeline terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE, leaves = VK_NULL_HANDLE;
+  VkPipeline terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE;
+  VkPipeline leaves = VK_NULL_HANDLE, leaves_instanced = VK_NULL_HANDLE;  // pulled / instanced (draw_pass.h)
   vk::Image map;  // SHADOW_CASCADES layers; map.view is the 2D-array view the shaders sample
   std::array<VkImageView, SHADOW_CASCADES> layers{};  // attachment views
   VkSampler sampler = VK_NULL_HANDLE;                 // depth compare (LESS_OR_EQUAL: lit), linear
@@ -49,6 +50,7 @@ void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& pass);
 // shadow cull's writes visible to indirect and vertex reads. After: the map is in
 // SHADER_READ_ONLY_OPTIMAL, its writes visible to fragment shaders.
 void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
-                        const SceneBuffers& scene, const CullPass& cull);
+                        const SceneBuffers& scene, const CullPass& cull,
+                        bool instanced_leaves);
 
 }  // namespace forest

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/present/image_io.h"
 #include "tests/cli/cli_run.h"
 
 namespace fs = std::filesystem;
@@ -200,6 +201,26 @@ TEST_F(CliTest, GenerateIsDeterministic) {
   EXPECT_EQ(a.substr(0, 4), "glTF");
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
+}
+
+TEST_F(CliTest, PreviewBarkLodsShowsEveryLevelInARow) {
+  std::string species = kSourceDir + "/scenes/species/broadleaf.toml";
+  ASSERT_EQ(run("generate --species '" + species + "' --out '" + (dir_ / "t.glb").string() + "'").code, 0);
+  Result r = run("preview '" + (dir_ / "t.glb").string() + "' --bark-lods --size 64 --out '" +
+                 (dir_ / "lods.png").string() + "'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // One view per level, LOD0 first, each line naming its triangles: fewer every level.
+  size_t levels = 0, previous = SIZE_MAX;
+  for (size_t at = r.out.find("LOD"); at != std::string::npos; at = r.out.find("LOD", at + 1)) {
+    size_t triangles = std::stoul(r.out.substr(r.out.find(": ", at) + 2));
+    EXPECT_LT(triangles, previous) << r.out;
+    previous = triangles;
+    ++levels;
+  }
+  EXPECT_GE(levels, 6u) << r.out;
+  forest::FrameImage sheet = forest::read_image(dir_ / "lods.png");
+  EXPECT_EQ(sheet.width, 64u * levels);
+  EXPECT_EQ(sheet.height, 64u);
 }
 
 TEST_F(CliTest, LearnThenGeneratePlantons) {

@@ -289,3 +289,32 @@ TEST_F(OcclusionTest, MultisampledDepthFeedsThePyramid) {
   for (uint32_t i = 0; i < 3; ++i) EXPECT_GE(st[i].occlusion, 0.85f) << "front-row tree " << i;  // a dense crown hides its own far-side samples
 }
 
+
+// Leaves by vertex pulling (leaf_pulled.vert, the default) and as instances of their card
+// (leaf.vert): the same frame, pixel for pixel, with occlusion (tail lists) and the sun's
+// shadows (the shadow pass's leaf draws), and the same counts.
+TEST_F(OcclusionTest, PulledAndInstancedLeavesDrawTheSameFrame) {
+  Scene s = hidden_pruning_scene(broadleaf_with_hull());
+  FrameImage images[2], masks[2];
+  FrameStats stats[2];
+  for (int instanced = 0; instanced < 2; ++instanced) {
+    Renderer r(ctx_, s, 160, 120, 1);
+    FrameSettings settings;
+    settings.occlusion = true;
+    settings.shadows = true;
+    settings.prune_mode = PruneMode::cook;
+    settings.instanced_leaves = instanced != 0;
+    for (int f = 0; f < 4; ++f) r.render(s.desc.camera, nullptr, settings);
+    stats[instanced] = r.render(s.desc.camera, &images[instanced], settings);
+    FrameSettings mask = settings;
+    mask.mask = true;
+    r.render(s.desc.camera, &masks[instanced], mask);
+  }
+  EXPECT_GT(stats[0].leaves_saved, 0u) << "the tail lists are exercised";
+  EXPECT_GT(stats[0].shadow_leaves[2] + stats[0].shadow_leaves[1] + stats[0].shadow_leaves[0], 0u);
+  EXPECT_EQ(stats[0].leaves_drawn, stats[1].leaves_drawn);
+  EXPECT_EQ(stats[0].leaves_saved, stats[1].leaves_saved);
+  ASSERT_EQ(images[0].rgba.size(), images[1].rgba.size());
+  EXPECT_TRUE(images[0].rgba == images[1].rgba) << "shaded frames differ";
+  EXPECT_TRUE(masks[0].rgba == masks[1].rgba) << "coverage differs";
+}

@@ -1,0 +1,25 @@
+// The indirect draw of `count` leaves of model m, shared by cull.comp and shadow_cull.comp:
+// leaves [first, first + count) of leaves[] (LEAF_LIST_DIRECT) or of the tail leaf list.
+// Pulled (default): one indexed draw of LEAF_QUAD_INDICES · count indices through the shared
+// quad pattern, vertex offset 4 · first, so leaf.vert finds the item at gl_VertexIndex / 4 and
+// the corner at gl_VertexIndex % 4; GPUs shade tiny instances with most vertex lanes idle.
+// Instanced (VIEW_LEAF_INSTANCED, for the comparison): the 4-vertex card, `count` instances
+// from firstInstance = first. Needs common.glsl.
+DrawCommand leaf_draw(Model m, uint count, uint first, uint instance, float lambda, float area_scale,
+                      float shown_lambda, uint list) {
+  if ((frame.view_flags & VIEW_LEAF_INSTANCED) != 0)
+    return DrawCommand(m.card_index_count, count, m.card_first_index, m.card_vertex_offset, first, instance, lambda,
+                       area_scale, shown_lambda, list);
+  return DrawCommand(LEAF_QUAD_INDICES * count, count > 0 ? 1 : 0, m.leaf_quad_first_index, int(4u * first), 0,
+                     instance, lambda, area_scale, shown_lambda, list);
+}
+
+// The leaf count of a draw made by leaf_draw (tail_cull.comp sets it once the tail is known).
+void set_leaf_count(inout DrawCommand d, uint count) {
+  if ((frame.view_flags & VIEW_LEAF_INSTANCED) != 0) {
+    d.instance_count = count;
+  } else {
+    d.index_count = LEAF_QUAD_INDICES * count;
+    d.instance_count = count > 0 ? 1 : 0;
+  }
+}
