@@ -104,8 +104,10 @@ BenchPlan plan_bench(const BenchArgs& args) {
       plan.modes.push_back(m);
     }
   plan.out = args.out;
-  if (!std::filesystem::is_directory(plan.out))
-    throw InputError(args.out, 0, "--out", "is not an existing folder");
+  // A missing folder is made once the run has its results (write_bench_results), so bad
+  // input leaves nothing behind.
+  if (std::filesystem::exists(plan.out) && !std::filesystem::is_directory(plan.out))
+    throw InputError(args.out, 0, "--out", "is not a folder");
   override_size(desc, args.width, args.height);
   plan.frames = bench_frames(*path, args.every, args.frames);
   return plan;
@@ -372,6 +374,9 @@ std::string shadow_note(const ModeSummary& m, const std::vector<ModeSummary>& mo
 void write_bench_results(const BenchReport& r) {
   const SceneDesc& desc = r.plan.desc;
   const std::filesystem::path& out = r.plan.out;
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw InputError(out.string(), 0, "--out", "cannot create folder: " + ec.message());
   std::string label = r.device + ", " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + ", " +
                       std::filesystem::path(r.args.scene).filename().string();
   nlohmann::ordered_json j = summary_header(r);

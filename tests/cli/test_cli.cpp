@@ -219,8 +219,11 @@ TEST_F(CliTest, PreviewBarkLodsShowsEveryLevelInARow) {
   }
   EXPECT_GE(levels, 6u) << r.out;
   forest::FrameImage sheet = forest::read_image(dir_ / "lods.png");
-  EXPECT_EQ(sheet.width, 64u * levels);
-  EXPECT_EQ(sheet.height, 64u);
+  // One row of `levels` views (the sheet adds thin borders).
+  EXPECT_GE(sheet.width, 64u * levels);
+  EXPECT_LT(sheet.width, 64u * (levels + 1));
+  EXPECT_GE(sheet.height, 64u);
+  EXPECT_LT(sheet.height, 128u);
 }
 
 TEST_F(CliTest, LearnThenGeneratePlantons) {
