@@ -146,7 +146,12 @@ void optimize_mesh(Mesh& mesh) {
   mesh.indices = std::move(indices);
 }
 
-MeshLod simplify_to(const Mesh& source, size_t target_triangles, float max_error) {
+namespace {
+
+// simplify_to and sloppy_lod: `source` welded by position, simplified by edge collapses
+// within max_error metres (sloppy: by vertex clustering, the count alone stopping it), the
+// corners then taking the source variants whose uv fit.
+MeshLod simplified(const Mesh& source, size_t target_triangles, float max_error, bool sloppy) {
   MeshLod lod;
   if (source.indices.empty()) return lod;
   const Welded welded = weld(source);
@@ -154,18 +159,29 @@ MeshLod simplify_to(const Mesh& source, size_t target_triangles, float max_error
   const float scale = meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3));
   std::vector<uint32_t> indices(welded.indices.size());
   float relative = 0.0f;
-  const size_t count = meshopt_simplify(indices.data(), welded.indices.data(), welded.indices.size(),
-                                        &welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3),
-                                        std::min(welded.indices.size(), std::max<size_t>(1, target_triangles) * 3),
-                                        scale > 0.0f ? max_error / scale : 0.0f, meshopt_SimplifyLockBorder,
-                                        &relative);
+  const size_t target = std::min(welded.indices.size(), std::max<size_t>(1, target_triangles) * 3);
+  const size_t count =
+      sloppy ? meshopt_simplifySloppy(indices.data(), welded.indices.data(), welded.indices.size(),
+                                      &welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3), target,
+                                      1.0f, &relative)
+             : meshopt_simplify(indices.data(), welded.indices.data(), welded.indices.size(), &welded.positions[0].x,
+                                welded.positions.size(), sizeof(glm::vec3), target,
+                                scale > 0.0f ? max_error / scale : 0.0f, meshopt_SimplifyLockBorder, &relative);
   indices.resize(count);
   lod.mesh.vertices = source.vertices;
   choose_variants(source, welded, uv, indices, lod.mesh.vertices);
   lod.mesh.indices = std::move(indices);
+  if (sloppy) remove_back_to_back(lod.mesh);
   optimize_mesh(lod.mesh);
+  if (lod.mesh.indices.empty()) lod.mesh.vertices.clear();
   lod.error = relative * scale;
   return lod;
+}
+
+}  // namespace
+
+MeshLod simplify_to(const Mesh& source, size_t target_triangles, float max_error) {
+  return simplified(source, target_triangles, max_error, false);
 }
 
 std::vector<float> collapse_errors(const Mesh& mesh, std::span<const size_t> targets, float max_error) {
@@ -272,27 +288,7 @@ size_t remove_back_to_back(Mesh& mesh) {
 }
 
 MeshLod sloppy_lod(const Mesh& source, size_t target_triangles) {
-  MeshLod lod;
-  if (source.indices.empty()) return lod;
-  const Welded welded = weld(source);
-  const UvScale uv = uv_scale(source);
-  const float scale = meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3));
-  std::vector<uint32_t> indices(welded.indices.size());
-  float relative = 0.0f;
-  // target_error 1 (the whole model): the triangle count is what stops it.
-  size_t count = meshopt_simplifySloppy(indices.data(), welded.indices.data(), welded.indices.size(),
-                                        &welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3),
-                                        std::min(welded.indices.size(), std::max<size_t>(1, target_triangles) * 3),
-                                        1.0f, &relative);
-  indices.resize(count);
-  lod.mesh.vertices = source.vertices;
-  choose_variants(source, welded, uv, indices, lod.mesh.vertices);
-  lod.mesh.indices = std::move(indices);
-  remove_back_to_back(lod.mesh);
-  optimize_mesh(lod.mesh);
-  if (lod.mesh.indices.empty()) lod.mesh.vertices.clear();
-  lod.error = relative * scale;
-  return lod;
+  return simplified(source, target_triangles, 0.0f, true);
 }
 
 }  // namespace forest
