@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "generators/mesh/branch_mesher.h"
 #include "generators/mesh/mesh_lod.h"
@@ -197,7 +196,6 @@ std::vector<MeshLod> structural_lods(const TreeGraph& graph, const MesherParams&
     lod.error = std::max(plan.removal_error, plan.ring_error + lod.error);
     built[level] = std::move(lod);
   });
-  int last = -1;  // the level the sloppy one starts from: -1 = LOD0
   for (MeshLod& lod : built) {
     const size_t triangles = lod.mesh.indices.size() / 3;
     if (triangles == 0 || triangles * 10 > previous * 9) continue;
@@ -205,20 +203,19 @@ std::vector<MeshLod> structural_lods(const TreeGraph& graph, const MesherParams&
     lod.error = error;
     previous = triangles;
     lods.push_back(std::move(lod));
-    last = int(lods.size()) - 1;
   }
   // The sloppy level simplifies the last structural one; its error adds to that level's
   // (the distance to LOD0 is at most the sum).
   const size_t target = std::max<size_t>(1, size_t(double(triangles0) * double(params.sloppy_fraction)));
   if (target < previous) {
-    const Mesh& source = last < 0 ? lod0 : lods[size_t(last)].mesh;
+    const Mesh& source = lods.empty() ? lod0 : lods.back().mesh;
     MeshLod sloppy = sloppy_lod(source, target);
     const size_t triangles = sloppy.mesh.indices.size() / 3;
     if (triangles > 0 && triangles * 10 <= previous * 9) {
       // meshopt's sloppy error is its grid's: blind to the thin parts clustering removes whole
       // (at 160x96 a grove of fig2_1 at this level lost 11 % of its coverage while it claimed
       // 0.03 m). The farthest source vertex from the result is what went.
-      sloppy.error = std::max({error, error + sloppy.error, error + farthest_vertex_distance(source, sloppy.mesh)});
+      sloppy.error = error + std::max(sloppy.error, farthest_vertex_distance(source, sloppy.mesh));
       lods.push_back(std::move(sloppy));
     }
   }
