@@ -16,6 +16,7 @@ layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 layout(location = 5) out float out_sun_visibility;
+layout(location = 6) flat out float out_fade;
 
 void main() {
   DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
@@ -30,6 +31,7 @@ void main() {
   out_albedo = m.bark_color.rgb * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
   out_sun_visibility = 1.0;
+  out_fade = d.fade;
   out_uv_layer = vec3(in_uv, float(m.bark_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda) * 0.6;
   gl_Position = draw_view_proj() * vec4(world, 1.0);

@@ -22,3 +22,16 @@ vec3 rotate_quat(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v)
 uint shadow_command_base(uint c) { return frame.instance_count * (3u + 2u * c); }
 
 vec4 unpack_tint(uint t) { return vec4(unpackUnorm4x8(t)) * (255.0 / 128.0); }
+
+// Ordered-dither threshold in (0, 1) of a pixel (4×4 Bayer matrix): a mesh keeps the pixels
+// below its fade, its impostor the others, so the two cross-fade without blending.
+float dither_threshold(vec2 frag_coord) {
+  uvec2 p = uvec2(frag_coord) & 3u;
+  const uint bayer[16] = uint[16](0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
+  return (float(bayer[p.y * 4u + p.x]) + 0.5) / 16.0;
+}
+
+// sRGB-encoded value → linear: what a shader writes to an sRGB attachment to store `c` itself.
+vec3 srgb_to_linear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}

@@ -39,6 +39,9 @@ using mat4 = glm::mat4;
 #define BINDING_BARK_ALBEDO 16     // sampler2DArray: bark colour, one layer per bark (Model.bark_texture_layer)
 #define BINDING_BARK_NORMALS 17    // sampler2DArray: bark tangent-space normal maps, the same layers
 #define BINDING_SHADOW_MAP 18      // sampler2DArrayShadow: the sun's cascaded shadow map, one layer per cascade
+#define BINDING_IMPOSTOR_LIST 19    // ImpostorEntry per far tree drawn as an impostor (cull.comp -> impostor.vert)
+#define BINDING_IMPOSTOR_ALBEDO 20  // sampler2DArray: impostor atlases, albedo (sRGB) and coverage, one layer per model
+#define BINDING_IMPOSTOR_NORMALS 21 // sampler2DArray: the same atlases' normal (octahedral xy) and height
 
 // Descriptor bindings of depth_pyramid.comp's set (one set per pyramid level).
 #define PYRAMID_BINDING_SOURCE 0       // sampler2D: the depth buffer (level 0) or the level above
@@ -53,6 +56,7 @@ using mat4 = glm::mat4;
 #define SPEC_ALPHA_TO_COVERAGE 1  // tree.frag: the pipeline turns the leaf alpha into coverage
 #define SPEC_COVERAGE_LATTICES 2  // tree.frag: bake coverage at every PR size in one render (PR_SIZES)
 #define SPEC_MINMAX_SAMPLER 0     // depth_pyramid.comp: levels >= 1 reduce with a MIN sampler
+#define SPEC_IMPOSTOR_SHADOW 0    // impostor.frag: depth only, for the sun's shadow map
 
 // Vertex attribute locations of forest::Vertex (binding 0), in every vertex shader with inputs.
 #define ATTR_POSITION 0  // vec3
@@ -71,6 +75,23 @@ using mat4 = glm::mat4;
 #define VIEW_MASK 2    // write coverage only (white): PR measurement
 #define VIEW_SHADOW 4  // grey = the sun's shadow-map visibility (tests, debugging)
 #define VIEW_LEAF_INSTANCED 8  // leaf draws as instances of the card (else pulled: leaf_draw.glsl)
+#define VIEW_IMPOSTOR_ALBEDO 16  // impostor bake: unlit albedo (times the sky visibility), no background
+#define VIEW_IMPOSTOR_NORMAL 32  // impostor bake: model-space normal (octahedral) and height (FrameData.impostor)
+
+// FrameData.impostors: far trees as one textured quad (impostor_pass.h, Model.impostor_q).
+#define IMPOSTORS_OFF 0
+#define IMPOSTORS_SWITCHED 1  // where the baked Q of the impostor reaches the mesh's at the tree's λ and size
+#define IMPOSTORS_ALWAYS 2    // every tree with an impostor (bake measurements, tests)
+// Hemi-octahedral impostor atlas (impostor_math.h): IMPOSTOR_GRID² views of the upper
+// hemisphere, each IMPOSTOR_VIEW_SIZE pixels square, in one atlas layer per model.
+#define IMPOSTOR_GRID 12
+#define IMPOSTOR_VIEW_SIZE 64
+#define IMPOSTOR_ATLAS_SIZE (IMPOSTOR_GRID * IMPOSTOR_VIEW_SIZE)
+// Q difference over which mesh and impostor cross-fade (dithered): the impostor alone once its
+// Q passes the mesh's by this much, the mesh alone while it does not pass it at all.
+#define IMPOSTOR_FADE_BAND 0.02
+// Draw-list slots of impostors: the camera's, then one per cascade, each instance_count long.
+#define IMPOSTOR_LISTS (1 + SHADOW_CASCADES)
 
 // Leaf draws by vertex pulling (leaf_draw.glsl): each leaf is 4 consecutive vertex indices
 // 4·leaf + corner, drawn through a shared index pattern of LEAF_QUAD_INDICES per leaf
@@ -148,6 +169,13 @@ GPU_STRUCT FrameData {
   vec4 shadow_texel;    // xyz = world size of one texel of cascades 0..2, w = texels per side
   vec4 camera_forward;  // xyz unit view direction (view depth = dot(p − camera_pos, it))
   vec4 light;           // x = exposure (scene-linear multiplier before the tone map)
+  // Impostor bake renders (VIEW_IMPOSTOR_NORMAL): x = view depth of the model's sphere centre,
+  // y = 1 / (2 · its radius): height 0.5 + (x − view depth) · y, 1 toward the camera.
+  // z > 0: the coverage cutoff every impostor uses this frame instead of its model's (the
+  // bake's search for it).
+  vec4 impostor;
+  uint impostors;       // IMPOSTORS_*
+  uint frame_pad0, frame_pad1, frame_pad2;
 };
 
 // Push constants of the tree and terrain vertex shaders: where a draw's commands start and
@@ -200,6 +228,10 @@ GPU_STRUCT Model {
   float crown_extinction;
   float pr_size0;            // projected size (px across the bounding sphere) of the tables' size 0
   uint leaf_quad_first_index;  // the shared quad index pattern in the index buffer (pulled leaf draws)
+  uint impostor_layer;       // layer of BINDING_IMPOSTOR_ALBEDO / _NORMALS; 0: no impostor
+  float impostor_cutoff;     // blended coverage from which an impostor pixel shows the tree (baked)
+  // Q of the impostor against full detail at the PR table sizes (pr_size0 / 2^b), baked.
+  float impostor_q[PR_SIZES];
 };
 
 // One occlusion sample point on the model's hull (bake) or, unbaked, on its bounding sphere.
@@ -251,6 +283,24 @@ struct DrawCommand {
   float area_scale;    // s: leaf area scale compensating the dropped leaves
   float shown_lambda;  // λ the λ view colours the tree by (with occlusion: λ · o)
   uint leaf_list;      // LEAF_LIST_*
+  float fade;          // fraction of the tree's pixels this mesh draws (dithered; the impostor the rest)
+};
+
+// One far tree drawn as an impostor: its instance and the fraction of its pixels the
+// impostor draws (the cross-fade with its mesh, dithered).
+struct ImpostorEntry {
+  uint instance;
+  float fade;
+};
+
+// VkDrawIndexedIndirectCommand of the impostor quads of one list: one instance per listed
+// tree, the 6 indices of the shared quad pattern (LEAF_QUAD_INDICES, Model.leaf_quad_first_index).
+struct ImpostorDraw {
+  uint index_count;
+  uint instance_count;
+  uint first_index;
+  int vertex_offset;
+  uint first_instance;
 };
 
 // Counters written by cull.comp, read by vkCmdDrawIndexedIndirectCount.
@@ -273,6 +323,9 @@ struct DrawCounts {
   uint shadow_leaf_draws[SHADOW_CASCADES];
   uint shadow_triangles[SHADOW_CASCADES];
   uint shadow_leaves[SHADOW_CASCADES];
+  // The impostor draws of the camera and of each cascade (impostor_pass.h); vertex counts
+  // written by cull.comp.
+  ImpostorDraw impostor_draws[IMPOSTOR_LISTS];
 };
 
 // Pixel counts of one coverage comparison (pr_count.comp).

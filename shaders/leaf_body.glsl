@@ -20,6 +20,7 @@ layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 layout(location = 5) out float out_sun_visibility;
+layout(location = 6) flat out float out_fade;
 
 float hash(uint x) {
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
@@ -56,6 +57,7 @@ void main() {
   out_uv_layer = vec3(in_uv, float(m.leaf_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda);
   out_sun_visibility = 1.0;
+  out_fade = d.fade;
   out_ao_translucency = vec2(1.0, 0.45);
   // The shadow map and coverage (mask) frames need the position and uv alone.
   if (draw.cascade != SHADOW_NONE || (frame.view_flags & VIEW_MASK) != 0) {

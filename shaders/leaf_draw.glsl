@@ -4,14 +4,15 @@
 // quad pattern, vertex offset 4 · first, so leaf.vert finds the item at gl_VertexIndex / 4 and
 // the corner at gl_VertexIndex % 4; GPUs shade tiny instances with most vertex lanes idle.
 // Instanced (VIEW_LEAF_INSTANCED, for the comparison): the 4-vertex card, `count` instances
-// from firstInstance = first. Needs common.glsl.
+// from firstInstance = first. `fade`: the mesh's share of a cross-fade with its impostor
+// (DrawCommand.fade). Needs common.glsl.
 DrawCommand leaf_draw(Model m, uint count, uint first, uint instance, float lambda, float area_scale,
-                      float shown_lambda, uint list) {
+                      float shown_lambda, uint list, float fade) {
   if ((frame.view_flags & VIEW_LEAF_INSTANCED) != 0)
     return DrawCommand(m.card_index_count, count, m.card_first_index, m.card_vertex_offset, first, instance, lambda,
-                       area_scale, shown_lambda, list);
+                       area_scale, shown_lambda, list, fade);
   return DrawCommand(LEAF_QUAD_INDICES * count, count > 0 ? 1 : 0, m.leaf_quad_first_index, int(4u * first), 0,
-                     instance, lambda, area_scale, shown_lambda, list);
+                     instance, lambda, area_scale, shown_lambda, list, fade);
 }
 
 // The leaf count of a draw made by leaf_draw (tail_cull.comp sets it once the tail is known).

@@ -10,14 +10,18 @@
 // the resolution of the PCF footprint (SHADOW_PCF_TEXELS texels), if that is farther than the
 // tree is: detail finer than the filter is averaged away, and coarse samples need fewer,
 // larger leaves for the same coverage, as a far camera does (Neubert 2012 ch7).
-// Branch LOD: the coarsest level whose error stays under that footprint too.
+// Branch LOD: the coarsest level whose error stays under that footprint too. A tree the
+// camera sees as its impostor (more than half of it, impostor_switch.glsl) casts its
+// impostor's shadow: the quad facing the sun.
 #include "common.glsl"
 #include "tree_detail.glsl"
+#include "impostor_switch.glsl"
 #include "leaf_draw.glsl"
 
 layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_DRAW_COUNTS, std430) buffer Counts { DrawCounts counts; };
+layout(set = 0, binding = BINDING_IMPOSTOR_LIST, std430) writeonly buffer Impostors { ImpostorEntry impostors[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -28,11 +32,19 @@ void main() {
   vec3 center = inst.position_scale.xyz + rotate_yaw(m.bounding_sphere.xyz, inst.yaw_cos_sin) * s;
   float radius = m.bounding_sphere.w * s;
   float camera_distance = distance(center, frame.lod_camera.xyz);
+  float camera_lambda, camera_scale;
+  tree_detail(m, radius, camera_distance, camera_lambda, camera_scale);
+  bool impostor = impostor_weight(m, camera_lambda, projected_size(radius, camera_distance, frame.lod.x)) >= 0.5;
   for (uint c = 0; c < SHADOW_CASCADES; ++c) {
     bool inside = true;
     for (uint p = 0; p < 6; ++p)
       if (dot(frame.shadow_planes[c * 6 + p].xyz, center) + frame.shadow_planes[c * 6 + p].w < -radius) inside = false;
     if (!inside) continue;
+    if (impostor) {
+      uint j = atomicAdd(counts.impostor_draws[1 + c].instance_count, 1);
+      impostors[(1 + c) * frame.instance_count + j] = ImpostorEntry(i, 1.0);
+      continue;
+    }
     // frame.lod.x: pixels per metre at distance 1, so t metres are one pixel at t · lod.x.
     float lambda, area_scale;
     tree_detail(m, radius, max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x), lambda, area_scale);
@@ -44,12 +56,12 @@ void main() {
     uint b = atomicAdd(counts.shadow_branch_draws[c], 1);
     atomicAdd(counts.shadow_triangles[c], m.lod_index_count[lod] / 3 + k * (m.card_index_count / 3));
     commands[base + b] = DrawCommand(m.lod_index_count[lod], 1, m.lod_first_index[lod], m.lod_vertex_offset[lod], 0, i,
-                                     lambda, area_scale, lambda, LEAF_LIST_DIRECT);
+                                     lambda, area_scale, lambda, LEAF_LIST_DIRECT, 1.0);
     if (k > 0) {
       uint l = atomicAdd(counts.shadow_leaf_draws[c], 1);
       atomicAdd(counts.shadow_leaves[c], k);
       commands[base + frame.instance_count + l] = leaf_draw(m, k, m.leaf_offset, i, lambda, area_scale, lambda,
-                                                            LEAF_LIST_DIRECT);
+                                                            LEAF_LIST_DIRECT, 1.0);
     }
   }
 }

@@ -7,6 +7,7 @@
 // its normal by the bark normal map, in a tangent frame from screen-space derivatives.
 #include "common.glsl"
 #include "lighting.glsl"
+#include "impostor_math.h"
 
 layout(constant_id = SPEC_LEAF) const bool LEAF = false;
 layout(constant_id = SPEC_ALPHA_TO_COVERAGE) const bool ALPHA_TO_COVERAGE = false;
@@ -22,6 +23,7 @@ layout(location = 2) in vec3 in_albedo;
 layout(location = 3) in vec2 in_ao_translucency;
 layout(location = 4) in vec3 in_uv_layer;
 layout(location = 5) in float in_sun_visibility;
+layout(location = 6) flat in float in_fade;
 layout(location = 0) out vec4 out_color;
 
 // The normal n perturbed by tangent-space normal t (glTF convention: +X along +u, +Y along
@@ -58,7 +60,27 @@ void lattice_coverage() {
   out_color = vec4(covered, coarse, 0.0, 1.0);
 }
 
+// Impostor bake renders (impostor_bake.h): the view's unlit albedo (leaves times their sky
+// visibility, which no later light knows), or the model-space normal and the height toward the
+// view camera (the bake's instance has no rotation and scale 1). The attachment is sRGB: the
+// normal and height are written decoded so that the stored bytes are the values themselves.
+bool impostor_bake_output(vec3 albedo, vec3 n) {
+  if ((frame.view_flags & VIEW_IMPOSTOR_ALBEDO) != 0) {
+    out_color = vec4(albedo * (LEAF ? in_ao_translucency.x : 1.0), 1.0);
+    return true;
+  }
+  if ((frame.view_flags & VIEW_IMPOSTOR_NORMAL) != 0) {
+    float view_depth = dot(in_world - frame.camera_pos.xyz, frame.camera_forward.xyz);
+    float height = clamp(0.5 + (frame.impostor.x - view_depth) * frame.impostor.y, 0.0, 1.0);
+    out_color = vec4(srgb_to_linear(vec3(oct_encode_normal(n), height)), 1.0);
+    return true;
+  }
+  return false;
+}
+
 void main() {
+  // Cross-fade with the tree's impostor (cull.comp): this mesh keeps the pixels below its fade.
+  if (in_fade < 1.0 && dither_threshold(gl_FragCoord.xy) >= in_fade) discard;
   if (LEAF && COVERAGE_LATTICES) {
     lattice_coverage();
     return;
@@ -90,6 +112,7 @@ void main() {
     albedo *= texture(bark_albedo, in_uv_layer).rgb;
     n = perturb_normal(n, in_world, in_uv_layer.xy, texture(bark_normals, in_uv_layer).xyz * 2.0 - 1.0);
   }
+  if (impostor_bake_output(albedo, n)) return;
   float sun_visibility = sun_shadow(in_world, n);
   if ((frame.view_flags & VIEW_SHADOW) != 0) {
     out_color = vec4(vec3(sun_visibility), clamp(alpha, 0.0, 1.0));

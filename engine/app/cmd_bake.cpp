@@ -32,6 +32,7 @@ BakeResult bake_model(TreeModel& model, const BakeArgs& args) {
   r.measurement = std::move(tb.measurement);
   r.hull_seconds = tb.hull_seconds;
   r.pr_seconds = tb.pr_seconds;
+  r.impostor_seconds = tb.impostor_seconds;
   r.hull_triangles = tb.hull_triangles;
   return r;
 }
@@ -47,6 +48,12 @@ int run_bake(const BakeArgs& args) {
               args.model.c_str(), out.c_str(), model.leaves.size(), args.priority.c_str(), r.hull_triangles,
               t.views, t.resolution, double(t.size0), double(pr_size(t.size0, PR_SIZES - 1)), r.hull_seconds,
               r.pr_seconds);
+  if (model.impostor.present()) {
+    std::printf("impostor: %d x %d views of %d px, %.1f s, coverage cutoff %.2f; Q against full detail at",
+                IMPOSTOR_GRID, IMPOSTOR_GRID, IMPOSTOR_VIEW_SIZE, r.impostor_seconds, double(model.impostor.cutoff));
+    for (uint32_t b = 0; b < model.impostor.q.size(); ++b)
+      std::printf(" %g px %.3f%s", double(pr_size(t.size0, b)), double(model.impostor.q[b]), b + 1 < PR_SIZES ? "," : "\n");
+  }
   const PrBakeStats& st = r.measurement.stats;
   std::printf("PR: %u pruned renders in %u submits; references %.1f s, pruned renders + counts %.1f s\n", st.renders,
               st.submits, st.reference_seconds, st.compare_seconds);

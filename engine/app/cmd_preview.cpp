@@ -6,6 +6,7 @@
 #include "engine/tools/gallery/contact_sheet.h"
 #include "engine/present/image_io.h"
 #include "generators/asset/asset_io.h"
+#include "generators/core/input_error.h"
 
 namespace forest::app {
 
@@ -34,6 +35,17 @@ int run_preview(const PreviewArgs& args) {
       std::printf("LOD%zu: %zu triangles\n", views.size() - 1, level->indices.size() / 3);
     }
     columns = uint32_t(views.size());
+  } else if (args.impostor) {
+    // The mesh above, its impostor below (impostor_bake.h), from the same cameras.
+    if (!model.impostor.present())
+      throw InputError(args.model, 0, "", "has no impostor (bake it: forest bake)");
+    views = render_turntable(context.ctx, model, t);
+    t.settings.impostors = ImpostorMode::always;
+    for (FrameImage& v : render_turntable(context.ctx, model, t)) views.push_back(std::move(v));
+    columns = t.views;
+    for (size_t b = 0; b < model.impostor.q.size(); ++b)
+      std::printf("impostor Q at %g px: %.3f\n", double(pr_size(model.bake.pr_tables ? model.bake.pr_tables->size0 : 512.0f, uint32_t(b))),
+                  double(model.impostor.q[b]));
   } else {
     views = render_turntable(context.ctx, model, t);
     columns = uint32_t(std::ceil(std::sqrt(double(views.size()))));

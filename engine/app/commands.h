@@ -15,7 +15,7 @@ namespace forest::app {
 struct BakeArgs;
 struct BakeResult {
   PrMeasurement measurement;
-  double hull_seconds = 0, pr_seconds = 0;
+  double hull_seconds = 0, pr_seconds = 0, impostor_seconds = 0;
   size_t hull_triangles = 0;
 };
 // Hull, priority order and PR tables into `model` (used by `bake` and `generate --bake`).
@@ -60,6 +60,7 @@ struct PreviewArgs {
   uint32_t size = 384;
   uint32_t views = 4;
   bool bark_lods = false;  // one view per bark LOD level, leaves hidden
+  bool impostor = false;   // a second row: the baked impostor from the same views
 };
 int run_preview(const PreviewArgs& args);
 

@@ -90,6 +90,8 @@ Command add_preview(CLI::App& cli) {
   cmd->add_option("--views", args->views, "Number of views around the model")->check(CLI::Range(1, 64));
   cmd->add_flag("--bark-lods", args->bark_lods,
                 "One view per bark LOD level (LOD0 first), leaves hidden, in a row");
+  cmd->add_flag("--impostor", args->impostor,
+                "A second row: the model's baked impostor from the same views (its Q per size printed)");
   cmd->add_option("--device", args->device, kDeviceHelp);
   return command(cmd, args, app::run_preview);
 }

@@ -160,7 +160,8 @@ void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
 }
 
 void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
-                      const SceneBuffers& scene, const CullPass& cull, const RenderTargets& targets, const DrawList& list) {
+                      const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
+                      const RenderTargets& targets, const DrawList& list) {
   const DrawPipelines& p = list.wireframe ? pass.wire : pass.fill;
   begin_targets(cmd, targets);
   begin_rendering(cmd, targets, list);
@@ -193,6 +194,7 @@ void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayou
     vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(n) * stride, cull.counts.buffer,
                                   offsetof(gpu::DrawCounts, leaf_draws), 2 * n, stride);
   }
+  if (n > 0 && list.impostors && !list.lattices) record_impostor_draw(cmd, impostors, layout, cull, SHADOW_NONE);
   vkCmdEndRendering(cmd);
 }
 

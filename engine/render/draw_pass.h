@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "engine/render/cull_pass.h"
+#include "engine/render/impostor_pass.h"
 #include "engine/render/render_targets.h"
 #include "engine/render/scene_buffers.h"
 
@@ -46,6 +47,7 @@ struct DrawList {
   bool shadows = false;     // the shadow pass runs first (shadow_pass.h); never in coverage frames
   bool lattices = false;    // coverage frames of the bake: leaves through DrawPass::lattice_leaves
   bool instanced_leaves = false;  // the cull pass wrote instanced leaf draws (VIEW_LEAF_INSTANCED)
+  bool impostors = false;         // the cull pass may have listed impostors (impostor_pass.h)
 };
 
 // Records the draw (set 0 bound to the graphics bind point by the caller). Before: the cull
@@ -53,6 +55,7 @@ struct DrawList {
 // COLOR_ATTACHMENT_OPTIMAL with its writes done at COLOR_ATTACHMENT_OUTPUT; depth likewise
 // at the fragment tests.
 void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
-                      const SceneBuffers& scene, const CullPass& cull, const RenderTargets& targets, const DrawList& list);
+                      const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
+                      const RenderTargets& targets, const DrawList& list);
 
 }  // namespace forest

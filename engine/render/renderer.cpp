@@ -58,6 +58,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   pr_count_ = create_pr_count_pass(ctx, layout_, targets_.extent);
   pyramid_overlay_ = create_pyramid_overlay_pass(ctx, layout_);
   shadow_ = create_shadow_pass(ctx, layout_, buffers_.instance_count, scene.desc.shadow_resolution);
+  impostors_ = create_impostor_pass(ctx, layout_, buffers_.instance_count, targets_.samples);
   shadow_bounds_ = scene_shadow_bounds(scene);
   pyramid_ = create_depth_pyramid(ctx, targets_.pyramid_source().view, targets_.extent, true);
   image_readback_ = vk::create_buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -95,6 +96,7 @@ void Renderer::write_descriptors() {
     write_tail_cull_bindings(w, tail_cull_);
     write_pr_count_bindings(w, pr_count_);
     write_shadow_bindings(w, shadow_);
+    write_impostor_bindings(w, impostors_);
     w.image(BINDING_DEPTH_PYRAMID, pyramid_.point_sampler, pyramid_.image.view, VK_IMAGE_LAYOUT_GENERAL);
     w.apply(ctx_, descriptors_, s.set, true);
   }
@@ -115,6 +117,7 @@ Renderer::~Renderer() {
   destroy_depth_pyramid(ctx_, pyramid_);
   destroy_pyramid_overlay_pass(ctx_, pyramid_overlay_);
   destroy_shadow_pass(ctx_, shadow_);
+  destroy_impostor_pass(ctx_, impostors_);
   destroy_pr_count_pass(ctx_, pr_count_);
   destroy_draw_pass(ctx_, draw_);
   destroy_tail_cull_pass(ctx_, tail_cull_);
@@ -181,10 +184,10 @@ void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const Dr
                          VK_ACCESS_2_TRANSFER_READ_BIT);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, slot.timestamps, kCullEnd);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowStart);
-  if (list.shadows) record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_, list.instanced_leaves);
+  if (list.shadows) record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_, impostors_, list.instanced_leaves);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowEnd);
   if (timed) begin_gpu_stats(cmd, slot.pipeline_stats, StatsPass::draw);
-  record_draw_pass(cmd, draw_, layout_, slot.set, buffers_, cull_, targets_, list);
+  record_draw_pass(cmd, draw_, layout_, slot.set, buffers_, cull_, impostors_, targets_, list);
   if (timed) end_gpu_stats(cmd, slot.pipeline_stats, StatsPass::draw);
   color_layout_ = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
 }
@@ -334,10 +337,14 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
   fd.prune_mode = uint32_t(settings.prune_mode);
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u) |
                   (settings.shadow_view ? VIEW_SHADOW : 0u) |
-                  (settings.instanced_leaves || !buffers_.leaves_pullable ? VIEW_LEAF_INSTANCED : 0u);
+                  (settings.instanced_leaves || !buffers_.leaves_pullable ? VIEW_LEAF_INSTANCED : 0u) |
+                  (settings.impostor_bake == ImpostorBake::albedo ? VIEW_IMPOSTOR_ALBEDO : 0u) |
+                  (settings.impostor_bake == ImpostorBake::normal ? VIEW_IMPOSTOR_NORMAL : 0u);
+  fd.impostors = uint32_t(settings.impostors);
+  fd.impostor = glm::vec4(settings.impostor_heights, settings.impostor_cutoff, 0.0f);
   fd.camera_forward = glm::vec4(cm.forward, 0.0f);
   fd.light = glm::vec4(scene_.desc.exposure, 0.0f, 0.0f, 0.0f);
-  if (settings.shadows && !settings.mask) {
+  if (settings.shadows && !settings.mask && settings.impostor_bake == ImpostorBake::none) {
     ShadowCascades sc = compute_shadow_cascades(camera, float(width_) / float(height_), sky.sun_direction,
                                                 scene_.desc.shadow_distance, shadow_.resolution, shadow_bounds_);
     fd.shadows = 1;
@@ -393,11 +400,14 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   }
   std::memcpy(slot.frame.mapped, &fd, sizeof(fd));
   DrawList list;
-  list.background = !settings.mask;
+  // Coverage and impostor bake frames: the trees alone on black.
+  const bool trees_alone = settings.mask || settings.impostor_bake != ImpostorBake::none;
+  list.background = !trees_alone;
   list.branches = settings.branches;
-  list.wireframe = settings.wireframe && has_wireframe() && !settings.mask;
+  list.wireframe = settings.wireframe && has_wireframe() && !trees_alone;
   list.keep_depth = settings.occlusion;
-  list.shadows = settings.shadows && !settings.mask;
+  list.shadows = settings.shadows && !trees_alone;
+  list.impostors = settings.impostors != ImpostorMode::off;
   list.instanced_leaves = (fd.view_flags & VIEW_LEAF_INSTANCED) != 0;
   // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.
   const bool overlay = settings.pyramid_overlay && settings.occlusion && !settings.mask && pyramid_valid_;
@@ -440,7 +450,9 @@ FrameStats Renderer::read_stats(FrameSlot& slot) {
     stats.shadow_casters[c] = counts.shadow_branch_draws[c];
     stats.shadow_triangles[c] = counts.shadow_triangles[c];
     stats.shadow_leaves[c] = counts.shadow_leaves[c];
+    stats.shadow_impostors[c] = counts.impostor_draws[1 + c].instance_count;
   }
+  stats.impostors = counts.impostor_draws[0].instance_count;
   stats.cull_pipeline = read_gpu_stats(ctx_, slot.pipeline_stats, StatsPass::cull);
   stats.draw_pipeline = read_gpu_stats(ctx_, slot.pipeline_stats, StatsPass::draw);
   return stats;

@@ -16,6 +16,7 @@
 #include "engine/render/descriptor_table.h"
 #include "engine/render/draw_pass.h"
 #include "engine/render/gpu_stats.h"
+#include "engine/render/impostor_pass.h"
 #include "engine/render/pr_count_pass.h"
 #include "engine/render/pyramid_overlay_pass.h"
 #include "engine/render/render_targets.h"
@@ -34,6 +35,15 @@ struct FrameImage {
   std::vector<uint8_t> rgba;  // sRGB, row-major, top row first
   const uint8_t* pixel(uint32_t x, uint32_t y) const { return &rgba[(size_t(y) * width + x) * 4]; }
 };
+
+// Far trees as impostors (FrameData.impostors, impostor_pass.h).
+enum class ImpostorMode : uint32_t {
+  off = IMPOSTORS_OFF,
+  switched = IMPOSTORS_SWITCHED,  // where the baked Q says the impostor is at least as good ([render] impostors)
+  always = IMPOSTORS_ALWAYS,      // every tree that has one (the bake's quality measurement, tests)
+};
+// The impostor bake's renders (impostor_bake.h): coverage is a mask frame, then these.
+enum class ImpostorBake { none, albedo, normal };
 
 // Per-frame choices that override the scene's [render] settings.
 struct FrameSettings {
@@ -71,6 +81,12 @@ struct FrameSettings {
   // Draw this instance alone (its index in Scene::instances), every other tree culled: the
   // per-tree PR of `forest bench --tree-pr` (each tree against its own full-detail mask).
   std::optional<uint32_t> solo_instance;
+  ImpostorMode impostors = ImpostorMode::off;
+  // Impostor bake frames (no background, no shadows, like mask frames); with `normal`,
+  // impostor_heights = (view depth of the model's centre, 1 / (2 · its radius)).
+  ImpostorBake impostor_bake = ImpostorBake::none;
+  glm::vec2 impostor_heights{0.0f};
+  float impostor_cutoff = 0.0f;  // > 0: every impostor's coverage cutoff (the bake's search)
 };
 FrameSettings scene_frame_settings(const SceneDesc& desc);
 
@@ -91,6 +107,8 @@ struct FrameStats {
   uint32_t shadow_casters[SHADOW_CASCADES] = {};    // trees drawn into each cascade
   uint32_t shadow_triangles[SHADOW_CASCADES] = {};  // bark + leaf triangles drawn into each cascade
   uint32_t shadow_leaves[SHADOW_CASCADES] = {};
+  uint32_t impostors = 0;                           // trees drawn as impostors (in the cross-fade band also as meshes)
+  uint32_t shadow_impostors[SHADOW_CASCADES] = {};  // impostor casters per cascade
   double cull_ms = 0.0;        // GPU timestamps
   double draw_ms = 0.0;        // the draw pass (sky, terrain, trees), without the shadow pass
   double frame_ms = 0.0;
@@ -126,7 +144,8 @@ struct CoverageJob {
 // Set 0 of every renderer pipeline: the union of the bindings its passes declare.
 inline constexpr std::span<const Binding> kRendererBindingLists[] = {kSceneBindings, kCullBindings, kTailCullBindings,
                                                                      kDrawBindings, kPrCountBindings,
-                                                                     kPyramidOverlayBindings, kShadowBindings};
+                                                                     kPyramidOverlayBindings, kShadowBindings,
+                                                                     kImpostorBindings};
 
 class Renderer {
  public:
@@ -229,6 +248,7 @@ class Renderer {
   PrCountPass pr_count_;
   PyramidOverlayPass pyramid_overlay_;
   ShadowPass shadow_;
+  ImpostorPass impostors_;
   ShadowBounds shadow_bounds_;  // what may cast: terrain and trees
   DepthPyramid pyramid_;
   FrameSlot slots_[kFramesInFlight];

@@ -7,6 +7,7 @@
 
 #include "engine/occlusion/occlusion_samples.h"
 #include "engine/render/bark_textures.h"
+#include "engine/render/impostor_textures.h"
 #include "engine/render/leaf_textures.h"
 #include "generators/asset/pr_tables.h"
 
@@ -173,6 +174,21 @@ void upload_textures(vk::Context& ctx, const Scene& scene, std::vector<gpu::Mode
   b.bark_albedo = vk::create_texture_array(ctx, al.size, al.layers, al.mips, VK_FORMAT_R8G8B8A8_SRGB, al.texels);
   b.bark_normals = vk::create_texture_array(ctx, nm.size, nm.layers, nm.mips, VK_FORMAT_R8G8B8A8_UNORM, nm.texels);
   b.bark_sampler = create_trilinear_sampler(ctx, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+  std::vector<const TreeModel*> all;
+  for (const TreeModel& tm : scene.models) all.push_back(&tm);
+  ImpostorArrays imp = build_impostor_arrays(all);
+  for (size_t i = 0; i < models.size(); ++i) {
+    models[i].impostor_layer = imp.layer[i];
+    models[i].impostor_cutoff = scene.models[i].impostor.cutoff;
+    const std::vector<float>& q = scene.models[i].impostor.q;
+    // Unmeasured: never as good as a mesh (Q −1), except where IMPOSTORS_ALWAYS draws it.
+    for (uint32_t k = 0; k < PR_SIZES; ++k) models[i].impostor_q[k] = q.size() == PR_SIZES ? q[k] : -1.0f;
+  }
+  const TextureArrayData& ia = imp.albedo;
+  const TextureArrayData& in = imp.normals;
+  b.impostor_albedo = vk::create_texture_array(ctx, ia.size, ia.layers, ia.mips, VK_FORMAT_R8G8B8A8_SRGB, ia.texels);
+  b.impostor_normals = vk::create_texture_array(ctx, in.size, in.layers, in.mips, VK_FORMAT_R8G8B8A8_UNORM, in.texels);
+  b.impostor_sampler = create_trilinear_sampler(ctx, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
 }
 
 }  // namespace
@@ -196,7 +212,8 @@ SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
   }
   uint32_t most_leaves = 0;
   for (const gpu::Model& m : a.models) most_leaves = std::max(most_leaves, m.leaf_count);
-  const uint32_t pattern = append_quad_pattern(a, b.leaves_pullable ? most_leaves : 0u);
+  // At least one quad: impostors draw it too (impostor_pass.h).
+  const uint32_t pattern = append_quad_pattern(a, b.leaves_pullable ? std::max(most_leaves, 1u) : 1u);
   for (gpu::Model& m : a.models) m.leaf_quad_first_index = pattern;
   b.instance_count = uint32_t(scene.instances.size());
   for (const gpu::Instance& inst : scene.instances) b.instance_leaves += scene.models[inst.model].leaves.size();
@@ -217,8 +234,10 @@ SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
 void destroy_scene_buffers(vk::Context& ctx, SceneBuffers& b) {
   for (vk::Buffer* buffer : {&b.vertices, &b.indices, &b.instances, &b.models, &b.leaves, &b.prune_tables, &b.hull_samples})
     vk::destroy_buffer(ctx, *buffer);
-  for (vk::Image* image : {&b.leaf_textures, &b.bark_albedo, &b.bark_normals}) vk::destroy_image(ctx, *image);
+  for (vk::Image* image : {&b.leaf_textures, &b.bark_albedo, &b.bark_normals, &b.impostor_albedo, &b.impostor_normals})
+    vk::destroy_image(ctx, *image);
   vkDestroySampler(ctx.device, b.leaf_sampler, nullptr);
+  vkDestroySampler(ctx.device, b.impostor_sampler, nullptr);
   vkDestroySampler(ctx.device, b.bark_sampler, nullptr);
   b = {};
 }
@@ -231,7 +250,9 @@ void write_scene_bindings(DescriptorWrites& w, const SceneBuffers& b) {
       .buffer(BINDING_HULL_SAMPLES, b.hull_samples)
       .image(BINDING_LEAF_TEXTURES, b.leaf_sampler, b.leaf_textures.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
       .image(BINDING_BARK_ALBEDO, b.bark_sampler, b.bark_albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-      .image(BINDING_BARK_NORMALS, b.bark_sampler, b.bark_normals.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+      .image(BINDING_BARK_NORMALS, b.bark_sampler, b.bark_normals.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      .image(BINDING_IMPOSTOR_ALBEDO, b.impostor_sampler, b.impostor_albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      .image(BINDING_IMPOSTOR_NORMALS, b.impostor_sampler, b.impostor_normals.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 }  // namespace forest

@@ -19,6 +19,8 @@ struct SceneBuffers {
   VkSampler leaf_sampler = VK_NULL_HANDLE;
   vk::Image bark_albedo, bark_normals;  // one layer per distinct bark, layer 0 neutral
   VkSampler bark_sampler = VK_NULL_HANDLE;  // repeat, trilinear
+  vk::Image impostor_albedo, impostor_normals;  // impostor_textures.h: layer 0 empty
+  VkSampler impostor_sampler = VK_NULL_HANDLE;  // clamp, trilinear
   uint32_t instance_count = 0;
   uint32_t terrain_index_count = 0;  // the terrain is the first mesh of `indices`
   uint64_t instance_leaves = 0;      // Σ over instances of its model's leaf count
@@ -45,7 +47,7 @@ inline constexpr Binding kSceneBindings[] = {
 
 SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene);
 void destroy_scene_buffers(vk::Context& ctx, SceneBuffers& buffers);
-// Every binding of kSceneBindings except BINDING_FRAME.
+// Every binding of kSceneBindings except BINDING_FRAME, and the impostor atlases.
 void write_scene_bindings(DescriptorWrites& writes, const SceneBuffers& buffers);
 
 }  // namespace forest

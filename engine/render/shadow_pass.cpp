@@ -84,7 +84,8 @@ void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& p) {
 }
 
 void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayout layout, VkDescriptorSet set,
-                        const SceneBuffers& scene, const CullPass& cull, bool instanced_leaves) {
+                        const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
+                        bool instanced_leaves) {
   const VkPipelineStageFlags2 tests = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   // After the previous frame's shading read the map.
   vk::image_barrier(cmd, p.map.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -129,6 +130,7 @@ void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayo
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, instanced_leaves ? p.leaves_instanced : p.leaves);
       vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, VkDeviceSize(base + n) * stride, cull.counts.buffer,
                                     offsetof(gpu::DrawCounts, shadow_leaf_draws) + 4 * c, n, stride);
+      record_impostor_draw(cmd, impostors, layout, cull, c);
     }
     vkCmdEndRendering(cmd);
   }

@@ -10,6 +10,7 @@
 
 #include "engine/render/cull_pass.h"
 #include "engine/render/descriptor_table.h"
+#include "engine/render/impostor_pass.h"
 #include "engine/render/scene_buffers.h"
 #include "gpu_types.h"
 
@@ -35,8 +36,8 @@ inline constexpr Binding kShadowBindings[] = {
     {BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
 };
 
-// The draw push constants (vertex stage), after PrCountPush's compute range.
-inline constexpr VkPushConstantRange kDrawPushRange{VK_SHADER_STAGE_VERTEX_BIT, DRAW_PUSH_OFFSET, sizeof(gpu::DrawPush)};
+// The draw push constants (vertex stage; impostors read the cascade in the fragment stage too), after PrCountPush's compute range.
+inline constexpr VkPushConstantRange kDrawPushRange{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, DRAW_PUSH_OFFSET, sizeof(gpu::DrawPush)};
 
 // The map starts in SHADER_READ_ONLY_OPTIMAL (lit everywhere), so frames without shadows can
 // bind it.
@@ -50,7 +51,7 @@ void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& pass);
 // shadow cull's writes visible to indirect and vertex reads. After: the map is in
 // SHADER_READ_ONLY_OPTIMAL, its writes visible to fragment shaders.
 void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
-                        const SceneBuffers& scene, const CullPass& cull,
+                        const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
                         bool instanced_leaves);
 
 }  // namespace forest

@@ -215,6 +215,46 @@ struct Reader {
     tree.bark_tile_meters = float(b["tile_meters"].get<double>());
   }
 
+  // The impostor (material "impostor", extras.forest_impostor; glb_writer.cpp): both atlases
+  // IMPOSTOR_ATLAS_SIZE square, the grid of this build, PR_SIZES qualities in [0, 1].
+  Impostor impostor() const {
+    Impostor out;
+    const tinygltf::Material* mat = nullptr;
+    for (const tinygltf::Material& m : model.materials)
+      if (m.name == "impostor" && m.extras.IsObject() && m.extras.Has("forest_impostor")) mat = &m;
+    if (!mat) return out;
+    const nlohmann::json j = to_json(mat->extras.Get("forest_impostor"));
+    const char* what = "material 'impostor': extras.forest_impostor";
+    auto integer = [&](const char* key) {
+      if (!j.is_object() || !j.contains(key) || !j[key].is_number_integer())
+        fail(std::string(what) + "." + key + " is not an integer");
+      return j[key].get<int64_t>();
+    };
+    if (integer("grid") != IMPOSTOR_GRID || integer("view_size") != IMPOSTOR_VIEW_SIZE)
+      fail(std::string(what) + ": a grid of " + std::to_string(integer("grid")) + " views of " +
+           std::to_string(integer("view_size")) + " px, this build reads " + std::to_string(IMPOSTOR_GRID) + " of " +
+           std::to_string(IMPOSTOR_VIEW_SIZE) + " (re-bake the model)");
+    int64_t nd = integer("normal_depth_texture");
+    if (nd < 0 || nd >= int64_t(model.textures.size())) fail(std::string(what) + ".normal_depth_texture out of range");
+    if (!j.contains("q") || !j["q"].is_array() || j["q"].size() != PR_SIZES)
+      fail(std::string(what) + ".q needs " + std::to_string(PR_SIZES) + " numbers");
+    for (const nlohmann::json& q : j["q"]) {
+      if (!q.is_number() || !std::isfinite(q.get<double>()) || q.get<double>() < 0.0 || q.get<double>() > 1.0)
+        fail(std::string(what) + ".q: each a number in [0, 1]");
+      out.q.push_back(float(q.get<double>()));
+    }
+    if (!j.contains("cutoff") || !j["cutoff"].is_number() || !std::isfinite(j["cutoff"].get<double>()) ||
+        j["cutoff"].get<double>() <= 0.0 || j["cutoff"].get<double>() >= 1.0)
+      fail(std::string(what) + ".cutoff: a number in (0, 1)");
+    out.cutoff = float(j["cutoff"].get<double>());
+    out.albedo = texture(mat, mat->pbrMetallicRoughness.baseColorTexture.index);
+    out.normal_depth = texture(mat, int(nd));
+    for (const Image8* img : {&out.albedo, &out.normal_depth})
+      if (img->width != IMPOSTOR_ATLAS_SIZE || img->height != IMPOSTOR_ATLAS_SIZE)
+        fail(std::string(what) + ": atlases must be " + std::to_string(IMPOSTOR_ATLAS_SIZE) + " px square");
+    return out;
+  }
+
   std::vector<LeafPlacement> instances(const tinygltf::Node& node) const {
     std::vector<LeafPlacement> out;
     auto ext = node.extensions.find(kInstancing);
@@ -472,6 +512,7 @@ TreeModel decode_glb(std::span<const uint8_t> bytes, const std::string& name) {
     throw InputError(name, 0, crown_depths ? "extras.forest.crown_extinction" : "EXT_mesh_gpu_instancing._CROWN_DEPTH_POS",
                      crown_depths ? "missing: the leaves carry crown depths" : "missing: extras.forest.crown_extinction is set");
   if (crown_depths) tree.bake.crown->depths = std::move(*crown_depths);
+  tree.impostor = r.impostor();
   return tree;
 }
 

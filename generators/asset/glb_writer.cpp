@@ -18,6 +18,9 @@
 //     map, both with a repeating trilinear sampler, TANGENT on the bark meshes; extras
 //     {"forest_bark": {"color": bark_color, "tile_meters": ...}} keep the look's colour and
 //     the tile size. Without textures: baseColorFactor = bark_color, as before.
+//   material "impostor", when baked (TreeModel::impostor, no mesh uses it): baseColorTexture =
+//     the albedo atlas (alpha = coverage, MASK, double sided); extras {"forest_impostor":
+//     {"grid", "view_size", "normal_depth_texture": texture index, "q": PR_SIZES numbers, "cutoff"}}
 //   root extras.forest = TreeModel::meta plus TreeModel::bake (bake_to_json, bake_data.cpp)
 // One buffer, one tightly packed buffer view per accessor (so no byteStride anywhere).
 #include "generators/asset/asset_io.h"
@@ -308,6 +311,18 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
     hull.name = "hull";
     hull.mesh = w.add_mesh("hull", tree.hull, w.add_material("hull", glm::vec3(0.5f), false));
     m.nodes.push_back(hull);
+  }
+
+  // The impostor atlases: a material no mesh of the scene uses (impostor_bake.h).
+  if (tree.impostor.present()) {
+    const Impostor& imp = tree.impostor;
+    int albedo = w.add_texture("impostor_albedo", imp.albedo);
+    int material = w.add_material("impostor", glm::vec3(1.0f), true, albedo);
+    int normal_depth = w.add_texture("impostor_normal_depth", imp.normal_depth);
+    m.materials[size_t(material)].extras = to_value(nlohmann::json{
+        {"forest_impostor",
+         {{"grid", IMPOSTOR_GRID}, {"view_size", IMPOSTOR_VIEW_SIZE}, {"normal_depth_texture", normal_depth},
+          {"q", imp.q}, {"cutoff", imp.cutoff}}}});
   }
 
   tinygltf::Scene scene;

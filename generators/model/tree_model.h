@@ -36,6 +36,19 @@ struct Image8 {
   std::vector<uint8_t> rgba;
 };
 
+// A far tree as one textured quad (engine/tools/bake/impostor_bake.h): IMPOSTOR_GRID² views of
+// the upper hemisphere (shaders/impostor_math.h), IMPOSTOR_VIEW_SIZE² pixels each, in two
+// atlases of IMPOSTOR_ATLAS_SIZE², and its quality per PR table size. Empty: none baked.
+struct Impostor {
+  Image8 albedo;        // sRGB albedo times the leaves' sky visibility; alpha = coverage
+  Image8 normal_depth;  // rg = octahedral model-space normal, b = height toward the view, a = 255
+  // Q against full detail at the PR tables' sizes pr_size(size0, b), b < PR_SIZES (the bake's
+  // views; empty: not measured, never switched to).
+  std::vector<float> q;
+  float cutoff = 0.5f;  // blended coverage from which a pixel shows the tree, chosen for the best Q
+  bool present() const { return !albedo.rgba.empty(); }
+};
+
 struct TreeModel {
   Mesh branches;                        // bark tubes, model space (LOD0)
   std::vector<MeshLod> branch_lods;     // LOD1, LOD2, ...: coarser, errors increasing
@@ -48,6 +61,7 @@ struct TreeModel {
   float bark_tile_meters = 0.0f;        // metres one texture tile covers (0: not recorded)
   std::vector<LeafPlacement> leaves;    // instances of leaf_card (in priority order once baked)
   Mesh hull;  // metaball hull (bake), empty before bake
+  Impostor impostor;  // bake: the far tree's quad, stored as material "impostor"
   BakeData bake;  // hull samples, leaf order name, PR tables (bake); extras.forest at the asset boundary
   glm::vec4 bounding_sphere{0.0f};      // xyz center, w radius: encloses branches and leaves
   glm::vec3 bark_color{0.30f, 0.22f, 0.15f};  // linear RGB

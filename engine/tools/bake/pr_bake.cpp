@@ -118,16 +118,8 @@ using clock = std::chrono::steady_clock;
 
 double seconds_since(clock::time_point t0) { return std::chrono::duration<double>(clock::now() - t0).count(); }
 
-// Azimuths around the model, alternating two elevations.
 std::vector<CameraDesc> pr_views(const TreeModel& model, const PrBakeOptions& options) {
-  std::vector<CameraDesc> cams;
-  for (uint32_t v = 0; v < options.views; ++v) {
-    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(options.views);
-    float elevation = glm::radians(v % 2 ? 35.0f : 10.0f);
-    cams.push_back(pr_view_camera(model.bounding_sphere, azimuth, elevation, options.size0,
-                                  pr_render_resolution(options.size0)));
-  }
-  return cams;
+  return forest::pr_views(model.bounding_sphere, options.views, options.size0, pr_render_resolution(options.size0));
 }
 
 // PR of (λ, s) points summed over the views, at every size, each point measured once.
@@ -284,6 +276,16 @@ void fill_lambda_opt(PrSizeTables& t, std::map<Point, PrSizes>& sums, const std:
 }  // namespace
 
 uint32_t pr_render_resolution(uint32_t size0) { return size0 + 4; }
+
+std::vector<CameraDesc> pr_views(glm::vec4 sphere, uint32_t views, uint32_t size, uint32_t resolution) {
+  std::vector<CameraDesc> cams;
+  for (uint32_t v = 0; v < views; ++v) {  // azimuths around the model, alternating two elevations
+    float azimuth = 2.0f * glm::pi<float>() * float(v) / float(views);
+    float elevation = glm::radians(v % 2 ? 35.0f : 10.0f);
+    cams.push_back(pr_view_camera(sphere, azimuth, elevation, size, resolution));
+  }
+  return cams;
+}
 
 CameraDesc pr_view_camera(glm::vec4 sphere, float azimuth, float elevation, uint32_t size0, uint32_t resolution) {
   CameraDesc cam;

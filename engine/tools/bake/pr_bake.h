@@ -49,6 +49,9 @@ struct PrMeasurement {
 // The bake's camera for one view: the bounding sphere centred, `size0` pixels across in a
 // square frame of `resolution` pixels (fov 30°).
 CameraDesc pr_view_camera(glm::vec4 bounding_sphere, float azimuth, float elevation, uint32_t size0, uint32_t resolution);
+// The bake's `views` cameras: azimuths around the model, alternating elevations of 10° and
+// 35°, the sphere `size` pixels across in a square frame of `resolution` pixels.
+std::vector<CameraDesc> pr_views(glm::vec4 bounding_sphere, uint32_t views, uint32_t size, uint32_t resolution);
 // Pixels of the square coverage render for size0: the sphere and a border of two pixels.
 uint32_t pr_render_resolution(uint32_t size0);
 

@@ -18,7 +18,7 @@ struct Context;
 namespace forest {
 
 // Bumped whenever a generator or the bake changes what a spec produces.
-constexpr int kSpeciesCacheVersion = 7;  // 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths; 5: PR tables per
+constexpr int kSpeciesCacheVersion = 8;  // 8: impostors; 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths; 5: PR tables per
                                          // projected size; 6: λ_opt = λ_Cook below the first measured λ;
                                          // 7: structural branch LODs
 

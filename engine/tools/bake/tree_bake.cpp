@@ -1,5 +1,7 @@
 #include "engine/tools/bake/tree_bake.h"
 
+#include "engine/tools/bake/impostor_bake.h"
+
 #include <chrono>
 
 #include "generators/bake/hull/hull.h"
@@ -33,9 +35,7 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
   po.views = settings.views;
   po.progress = settings.progress;
   PrMeasurement pm = measure_pr_tables(ctx, model, po);
-  if (ctx.validation_messages > messages_before)
-    throw vk::VkFailure(std::to_string(ctx.validation_messages.load() - messages_before) +
-                        " Vulkan validation message(s) during bake");
+  auto t_pr = clock::now();
   pm.tables.priority = settings.priority;
   model.bake.pr_tables = pm.tables;
   model.bake.pr_samples.clear();  // the PR diagram behind the tables
@@ -43,11 +43,18 @@ TreeBakeResult bake_tree_model(vk::Context& ctx, TreeModel& model, const TreeBak
     for (uint32_t b = 0; b < PR_SIZES; ++b)
       model.bake.pr_samples.push_back({ps.lambda, ps.scale, pr_size(pm.tables.size0, b), ps.pr[b].precision(),
                                        ps.pr[b].recall()});
+  // After the tables: the impostor's views prune by them (impostor_bake.cpp).
+  model.impostor = {};
+  if (settings.impostor) attach_impostor(ctx, model, settings.views, settings.resolution);
+  if (ctx.validation_messages > messages_before)
+    throw vk::VkFailure(std::to_string(ctx.validation_messages.load() - messages_before) +
+                        " Vulkan validation message(s) during bake");
   TreeBakeResult r;
   r.measurement = std::move(pm);
   r.hull_seconds = std::chrono::duration<double>(t_hull - t0).count();
   r.crown_seconds = std::chrono::duration<double>(t_crown - t_hull_mesh).count();
-  r.pr_seconds = std::chrono::duration<double>(clock::now() - t_hull).count();
+  r.pr_seconds = std::chrono::duration<double>(t_pr - t_hull).count();
+  r.impostor_seconds = std::chrono::duration<double>(clock::now() - t_pr).count();
   r.hull_triangles = hull.mesh.indices.size() / 3;
   return r;
 }

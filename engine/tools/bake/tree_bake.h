@@ -1,7 +1,7 @@
 // Bake a generated model for run-time pruning: metaball hull, crown depths (self-shadowing),
 // priority-sorted leaves and
-// PR-measured s_opt / λ_opt tables (stored in model.bake). Used by `forest bake` and the
-// species cache.
+// PR-measured s_opt / λ_opt tables (stored in model.bake), and the impostor with its Q per size
+// (model.impostor, impostor_bake.h). Used by `forest bake` and the species cache.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -17,6 +17,7 @@ struct TreeBakeSettings {
   std::optional<uint64_t> seed;       // default: the model's seed
   uint32_t views = 6;
   uint32_t resolution = 512;  // PrBakeOptions::size0
+  bool impostor = true;       // bake the impostor atlases and their Q
   std::function<void(double)> progress;  // fraction of the PR measurement done
 };
 
@@ -24,6 +25,7 @@ struct TreeBakeResult {
   PrMeasurement measurement;
   double hull_seconds = 0, pr_seconds = 0;  // hull_seconds includes crown_seconds and the priority order
   double crown_seconds = 0;                 // attach_crown_light: per-leaf crown depths and κ
+  double impostor_seconds = 0;              // attach_impostor: atlases and their Q per size
   size_t hull_triangles = 0;
 };
 

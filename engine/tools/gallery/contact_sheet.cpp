@@ -51,7 +51,7 @@ std::vector<FrameImage> render_turntable(vk::Context& ctx, const TreeModel& mode
     float azimuth = 2.0f * glm::pi<float>() * float(v) / float(options.views);
     CameraDesc cam = orbit_camera(model.bounding_sphere, azimuth, glm::radians(options.elevation_deg), options.fov_deg);
     FrameImage image;
-    renderer.render(cam, &image);
+    renderer.render(cam, &image, options.settings);
     frames.push_back(std::move(image));
   }
   return frames;

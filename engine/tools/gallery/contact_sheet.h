@@ -14,6 +14,7 @@ struct TurntableOptions {
   float elevation_deg = 12.0f;
   float fov_deg = 30.0f;
   uint32_t samples = 4;
+  FrameSettings settings;  // e.g. impostors always: the impostor in place of the mesh
 };
 
 // A scene holding just `model` at the origin on a flat neutral ground, no fog.
