@@ -16,7 +16,7 @@ const std::vector<std::string>& bench_mode_names() {
   static const std::vector<std::string> names = {"full",          "cook",           "cook-random", "opt",
                                                   "opt-random",    "opt-density",    "opt-orientation",
                                                   "opt-combined",  "opt-layered",    "opt-occl",
-                                                  "opt-occl-instanced", "target"};
+                                                  "opt-occl-instanced", "opt-occl-imp", "target"};
   return names;
 }
 
@@ -28,6 +28,7 @@ std::optional<BenchMode> bench_mode(const std::string& name) {
   std::string base = name;
   if (name == "opt-occl") base = "opt", m.occlusion = true;
   if (name == "opt-occl-instanced") base = "opt", m.occlusion = true, m.instanced_leaves = true;
+  if (name == "opt-occl-imp") base = "opt", m.occlusion = true, m.impostors = true;
   if (name == "cook-random") base = "cook", m.priority = "random";
   if (name.rfind("opt-", 0) == 0 && parse_priority(name.substr(4))) base = "opt", m.priority = name.substr(4);
   std::optional<PruneMode> mode = parse_prune_mode(base);
@@ -84,6 +85,7 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
   settings.occlusion = mode.occlusion;
   settings.instanced_leaves = mode.instanced_leaves;
   settings.shadows = mode.shadows;
+  settings.impostors = mode.impostors ? ImpostorMode::switched : ImpostorMode::off;
   settings.mask = settings.lambda_view = settings.wireframe = false;
   uint64_t terrain_and_sky = scene.terrain.mesh().indices.size() / 3 + 1;  // sky: one full-screen triangle
   uint64_t card_triangles = scene.models.empty() ? 0 : scene.models[0].leaf_card.indices.size() / 3;

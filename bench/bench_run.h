@@ -26,6 +26,7 @@ struct BenchMode {
   std::string priority;  // the leaf order the models are baked with; empty: the scene's [bake] priority
   bool shadows = false;  // the sun's shadow maps (--shadows); the name then ends in "+shadows"
   bool instanced_leaves = false;  // leaves as card instances, not pulled (opt-occl-instanced)
+  bool impostors = false;  // far trees as impostors where their baked Q allows (opt-occl-imp, --impostors on)
 };
 std::optional<BenchMode> bench_mode(const std::string& name);
 const std::vector<std::string>& bench_mode_names();

@@ -56,7 +56,6 @@ using mat4 = glm::mat4;
 #define SPEC_ALPHA_TO_COVERAGE 1  // tree.frag: the pipeline turns the leaf alpha into coverage
 #define SPEC_COVERAGE_LATTICES 2  // tree.frag: bake coverage at every PR size in one render (PR_SIZES)
 #define SPEC_MINMAX_SAMPLER 0     // depth_pyramid.comp: levels >= 1 reduce with a MIN sampler
-#define SPEC_IMPOSTOR_SHADOW 0    // impostor.frag: depth only, for the sun's shadow map
 
 // Vertex attribute locations of forest::Vertex (binding 0), in every vertex shader with inputs.
 #define ATTR_POSITION 0  // vec3

@@ -10,9 +10,11 @@
 // the resolution of the PCF footprint (SHADOW_PCF_TEXELS texels), if that is farther than the
 // tree is: detail finer than the filter is averaged away, and coarse samples need fewer,
 // larger leaves for the same coverage, as a far camera does (Neubert 2012 ch7).
-// Branch LOD: the coarsest level whose error stays under that footprint too. A tree the
-// camera sees as its impostor (more than half of it, impostor_switch.glsl) casts its
-// impostor's shadow: the quad facing the sun.
+// Branch LOD: the coarsest level whose error stays under that footprint too. A tree casts its
+// impostor's shadow (the quad facing the sun) where the camera sees its impostor (more than
+// half of it), or where the impostor is at least as good as the mesh at the size the cascade
+// sees the tree with: the size at that same distance (impostor_switch.glsl), so far cascades,
+// whose texels are metres wide, take impostors long before the camera does.
 #include "common.glsl"
 #include "tree_detail.glsl"
 #include "impostor_switch.glsl"
@@ -40,14 +42,16 @@ void main() {
     for (uint p = 0; p < 6; ++p)
       if (dot(frame.shadow_planes[c * 6 + p].xyz, center) + frame.shadow_planes[c * 6 + p].w < -radius) inside = false;
     if (!inside) continue;
-    if (impostor) {
+    // frame.lod.x: pixels per metre at distance 1, so t metres are one pixel at t · lod.x.
+    float cascade_distance = max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x);
+    float lambda, area_scale;
+    tree_detail(m, radius, cascade_distance, lambda, area_scale);
+    if (impostor || impostor_weight(m, lambda, projected_size(radius, cascade_distance, frame.lod.x)) >= 0.5) {
       uint j = atomicAdd(counts.impostor_draws[1 + c].instance_count, 1);
       impostors[(1 + c) * frame.instance_count + j] = ImpostorEntry(i, 1.0);
+      atomicAdd(counts.shadow_triangles[c], 2);  // its quad
       continue;
     }
-    // frame.lod.x: pixels per metre at distance 1, so t metres are one pixel at t · lod.x.
-    float lambda, area_scale;
-    tree_detail(m, radius, max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x), lambda, area_scale);
     uint k = leaf_prefix(lambda, m.leaf_count);
     uint lod = 0;
     for (uint e = 1; e < m.lod_count; ++e)

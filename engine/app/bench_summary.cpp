@@ -50,8 +50,10 @@ ModeSummary summarize(const BenchMode& mode, std::vector<BenchFrame> frames) {
     s.leaves_saved += f.stats.leaves_saved / n, s.triangles_saved += f.stats.triangles_saved / n;
     s.occluded += f.stats.occluded_instances / n;
     s.gpu_shadow_ms += f.stats.shadow_ms / n;
+    s.impostors += f.stats.impostors / n;
     for (int c = 0; c < SHADOW_CASCADES; ++c)
-      s.shadow_casters[c] += f.stats.shadow_casters[c] / n, s.shadow_triangles[c] += f.stats.shadow_triangles[c] / n;
+      s.shadow_casters[c] += f.stats.shadow_casters[c] / n, s.shadow_triangles[c] += f.stats.shadow_triangles[c] / n,
+      s.shadow_impostors[c] += f.stats.shadow_impostors[c] / n;
     if (f.has_pr) {
       s.pr_frames++;
       s.quality += f.pr.quality(), s.precision += f.pr.precision(), s.recall += f.pr.recall();
@@ -66,7 +68,7 @@ std::string frames_csv(const ModeSummary& m) {
   std::ostringstream o;
   o << "frame,time_s,gpu_cull_ms,gpu_draw_ms,gpu_pyramid_ms,gpu_frame_ms,cpu_ms,ia_primitives,tree_triangles,"
        "branch_triangles,leaves_drawn,instances_visible,occluded_instances,leaves_saved,triangles_saved,mean_lambda,"
-       "gpu_shadow_ms,shadow_triangles,precision,recall,q\n";
+       "gpu_shadow_ms,shadow_triangles,precision,recall,q,impostors\n";
   char buf[512];
   for (const BenchFrame& f : m.frames) {
     const FrameStats& s = f.stats;
@@ -86,7 +88,7 @@ std::string frames_csv(const ModeSummary& m) {
     } else {
       o << ",,";
     }
-    o << "\n";
+    o << "," << s.impostors << "\n";
   }
   return o.str();
 }

@@ -21,6 +21,7 @@ struct ModeSummary {
   double triangles = 0, vertices = 0, leaves = 0, visible = 0, lambda = 0, quality = 0, precision = 0, recall = 0;
   double leaves_saved = 0, triangles_saved = 0, occluded = 0;  // by occlusion feedback, per frame
   double gpu_shadow_ms = 0, shadow_casters[SHADOW_CASCADES] = {}, shadow_triangles[SHADOW_CASCADES] = {};
+  double impostors = 0, shadow_impostors[SHADOW_CASCADES] = {};  // per frame
   uint32_t pr_frames = 0;
   // Shares of what the mode would draw without occlusion, and of the GPU frame.
   double leaves_saved_share() const { return leaves_saved / std::max(leaves + leaves_saved, 1.0); }

@@ -100,6 +100,7 @@ BenchPlan plan_bench(const BenchArgs& args) {
   for (bool shadows : settings)
     for (BenchMode m : parse_modes(args.modes)) {
       m.shadows = shadows;
+      m.impostors = m.impostors || args.impostors.value_or(desc.impostors);
       if (shadows && settings.size() > 1) m.name += "+shadows";
       plan.modes.push_back(m);
     }
@@ -264,11 +265,14 @@ nlohmann::ordered_json mode_json(const ModeSummary& m, const ModeSummary* cook, 
                       {"triangles_saved_share", m.triangles_saved_share()},
                       {"instances_culled", m.occluded},
                       {"gpu_pyramid_and_cull_share", m.occlusion_gpu_share()}};
+  e["impostors_on"] = m.mode.impostors;
+  if (m.mode.impostors) e["impostors_drawn"] = m.impostors;
   e["shadows_on"] = m.mode.shadows;
   if (m.mode.shadows)
     e["shadows"] = {{"gpu_shadow_ms", m.gpu_shadow_ms},
                     {"gpu_frame_share", m.gpu_frame_ms > 0 ? m.gpu_shadow_ms / m.gpu_frame_ms : 0.0},
                     {"casters_per_cascade", m.shadow_casters},
+                    {"impostor_casters_per_cascade", m.shadow_impostors},
                     {"triangles_per_cascade", m.shadow_triangles}};
   if (TreePr t = tree_pr(m); t.frames)
     e["tree_pr"] = {{"frames", t.frames}, {"min_trees_per_frame", t.min_trees}, {"mean_q", t.mean},

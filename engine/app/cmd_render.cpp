@@ -75,6 +75,7 @@ FrameStats render_still(vk::Context& ctx, const Scene& scene, const SceneDesc& d
   FrameSettings settings = scene_frame_settings(desc);
   if (args.occlusion) settings.occlusion = *args.occlusion;
   if (args.shadows) settings.shadows = *args.shadows;
+  if (args.impostors) settings.impostors = *args.impostors ? ImpostorMode::switched : ImpostorMode::off;
   settings.pyramid_overlay = args.overlay == "pyramid";
   // Occlusion feeds back from one frame to the next: a still picture shows the steady
   // state, after the hidden trees have thinned out (kWarmupFrames from the same camera).

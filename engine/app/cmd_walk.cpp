@@ -78,6 +78,9 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_4: s.settings.prune_mode = PruneMode::target; break;
     case GLFW_KEY_O: s.settings.occlusion = !s.settings.occlusion; break;
     case GLFW_KEY_J: s.settings.shadows = !s.settings.shadows; break;
+    case GLFW_KEY_I:
+      s.settings.impostors = s.settings.impostors == ImpostorMode::off ? ImpostorMode::switched : ImpostorMode::off;
+      break;
     case GLFW_KEY_L: s.settings.lambda_view = !s.settings.lambda_view; break;
     case GLFW_KEY_Y:
       s.settings.pyramid_overlay = !s.settings.pyramid_overlay;
@@ -436,6 +439,7 @@ int run_walk(const WalkArgs& args) {
   WalkState state;
   state.settings = scene_frame_settings(desc);
   if (args.shadows) state.settings.shadows = *args.shadows;
+  if (args.impostors) state.settings.impostors = *args.impostors ? ImpostorMode::switched : ImpostorMode::off;
   state.hud = !args.no_hud;
   listen_to_window(win.window, state);
 

@@ -109,6 +109,7 @@ struct RenderArgs {
   std::string device;
   std::optional<uint32_t> width, height;
   std::optional<bool> occlusion;  // --occlusion on|off, overrides [render].occlusion
+  std::optional<bool> impostors;  // --impostors on|off, overrides [render].impostors
   std::optional<bool> shadows;    // --shadows on|off, overrides [render].shadows
   std::optional<glm::vec2> sun;   // --sun AZIMUTH,ELEVATION (degrees), overrides [sky].sun_direction
   std::optional<float> exposure;  // --exposure, overrides [render].exposure
@@ -148,6 +149,7 @@ struct WalkArgs {
   bool validate = false;
   std::string present = "auto";  // auto | blit | pass (the copy pass, where blits are unsupported)
   std::optional<bool> shadows;   // --shadows on|off, overrides [render].shadows ([J] toggles)
+  std::optional<bool> impostors;  // --impostors on|off, overrides [render].impostors ([I] toggles)
 };
 int run_walk(const WalkArgs& args);
 
@@ -161,6 +163,7 @@ struct BenchArgs {
   uint32_t tree_pr = 0;             // at PR frames, also Q of this many trees, each alone (0: none)
   std::optional<uint32_t> occlusion_warmup;  // frames drawn before each played one (default: all between)
   std::string shadows;              // on | off | on,off: every mode with each (default: [render].shadows)
+  std::optional<bool> impostors;    // --impostors on|off: every mode with or without them (default: [render].impostors)
   uint32_t probe_instances = 64;    // throughput probe: sheets of 96 × 96 quads (0: no probe)
   std::optional<uint32_t> width, height;
   std::string out;                  // existing folder

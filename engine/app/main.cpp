@@ -1,4 +1,5 @@
 // forest: offline tree generators and the real-time forest renderer, one executable.
+#include <map>
 #include <cstdio>
 #include <exception>
 #include <functional>
@@ -153,6 +154,7 @@ Command add_render(CLI::App& cli) {
     app::RenderArgs args;
     std::string occlusion;  // on | off, into args.occlusion
     std::string shadows;    // on | off, into args.shadows
+    std::string impostors;  // on | off, into args.impostors
     std::vector<float> sun;  // azimuth, elevation
   };
   auto p = std::make_shared<Parsed>();
@@ -167,6 +169,8 @@ Command add_render(CLI::App& cli) {
                             ->check(CLI::IsMember({"on", "off"}));
   auto* shadows_opt = cmd->add_option("--shadows", p->shadows, "Sun shadows, cascaded shadow maps (overrides [render].shadows)")
                           ->check(CLI::IsMember({"on", "off"}));
+  auto* impostors_opt = cmd->add_option("--impostors", p->impostors, "Far trees as impostors where their baked Q allows (overrides [render].impostors)")
+                            ->check(CLI::IsMember({"on", "off"}));
   auto* sun_opt = cmd->add_option("--sun", p->sun, "AZIMUTH,ELEVATION of the sun in degrees (azimuth from +x toward +z; overrides [sky].sun_direction)")
                       ->delimiter(',')->expected(2)->check(CLI::Range(-360.0, 360.0));
   cmd->add_option("--exposure", a.exposure, "Scene-linear multiplier before the tone map (overrides [render].exposure)")
@@ -186,8 +190,9 @@ Command add_render(CLI::App& cli) {
   frame_opt->excludes(time_opt);
   cmd->add_option("--cache", a.cache, kCacheHelp);
   cmd->add_flag("--validate", a.validate, kValidateHelp);
-  return {cmd, [p, occlusion_opt, shadows_opt, sun_opt] {
+  return {cmd, [p, occlusion_opt, shadows_opt, impostors_opt, sun_opt] {
             if (*occlusion_opt) p->args.occlusion = p->occlusion == "on";
+            if (*impostors_opt) p->args.impostors = p->impostors == "on";
             if (*shadows_opt) p->args.shadows = p->shadows == "on";
             if (*sun_opt) p->args.sun = glm::vec2(p->sun[0], p->sun[1]);
             return app::run_render(p->args);
@@ -209,6 +214,7 @@ Command add_walk(CLI::App& cli) {
   struct Parsed {
     app::WalkArgs args;
     std::string shadows;  // on | off, into args.shadows
+    std::string impostors;  // on | off, into args.impostors
   };
   auto p = std::make_shared<Parsed>();
   app::WalkArgs& a = p->args;
@@ -226,9 +232,12 @@ Command add_walk(CLI::App& cli) {
       ->check(CLI::IsMember({"auto", "blit", "pass"}));
   auto* shadows_opt = cmd->add_option("--shadows", p->shadows, "Sun shadows (overrides [render].shadows; [J] toggles)")
                           ->check(CLI::IsMember({"on", "off"}));
+  auto* impostors_opt = cmd->add_option("--impostors", p->impostors, "Far trees as impostors (overrides [render].impostors; [I] toggles)")
+                            ->check(CLI::IsMember({"on", "off"}));
   cmd->add_flag("--validate", a.validate, kValidateHelp);
-  return {cmd, [p, shadows_opt] {
+  return {cmd, [p, shadows_opt, impostors_opt] {
             if (*shadows_opt) p->args.shadows = p->shadows == "on";
+            if (*impostors_opt) p->args.impostors = p->impostors == "on";
             return app::run_walk(p->args);
           }};
 }
@@ -239,7 +248,7 @@ Command add_bench(CLI::App& cli) {
   auto* cmd = cli.add_subcommand("bench", "Play a scene's camera path in several prune modes: per-frame CSV, JSON summary vs Cook, plots");
   cmd->add_option("scene", a.scene, "Scene file (TOML) with a [[path]]")->required();
   cmd->add_option("--path", a.path, "Camera path name (default: the first [[path]])");
-  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, cook-random, opt, opt-<order> (random, density, orientation, combined, layered), opt-occl, opt-occl-instanced (leaves as card instances, not pulled), target");
+  cmd->add_option("--modes", a.modes, "Comma-separated: full, cook, cook-random, opt, opt-<order> (random, density, orientation, combined, layered), opt-occl, opt-occl-instanced (leaves as card instances, not pulled), opt-occl-imp (with impostors), target");
   auto* frames_opt = cmd->add_option("--frames", a.frames, "At most N frames")->check(CLI::Range(1, 1000000));
   auto* every_opt = cmd->add_option("--every", a.every, "Play every k-th frame of the path")->check(CLI::Range(1, 1000000));
   frames_opt->excludes(every_opt);
@@ -250,6 +259,8 @@ Command add_bench(CLI::App& cli) {
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--shadows", a.shadows, "Sun shadows: on, off, or on,off (every mode played with each; default: [render].shadows)")
       ->check(CLI::IsMember({"on", "off", "on,off", "off,on"}));
+  cmd->add_option("--impostors", a.impostors, "Far trees as impostors in every mode: on or off (default: [render].impostors; opt-occl-imp always)")
+      ->transform(CLI::IsMember(std::map<std::string, bool>{{"on", true}, {"off", false}}));
   add_size_options(cmd, a.width, a.height);
   cmd->add_option("--probe-instances", a.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0u, kMaxProbeInstances));
   cmd->add_option("--out", a.out, "Output folder (must exist)")->required();

@@ -250,6 +250,7 @@ FrameSettings scene_frame_settings(const SceneDesc& desc) {
   s.mask = desc.mask_view;
   s.occlusion = desc.occlusion;
   s.shadows = desc.shadows;
+  s.impostors = desc.impostors ? ImpostorMode::switched : ImpostorMode::off;
   return s;
 }
 

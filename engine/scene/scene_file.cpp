@@ -31,7 +31,7 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 
 void read_render(const TomlTable& t, SceneDesc& s) {
   t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view",
-                "occlusion", "shadows", "shadow_distance", "shadow_resolution", "exposure", "quality"});
+                "occlusion", "shadows", "shadow_distance", "shadow_resolution", "exposure", "quality", "impostors"});
   s.width = uint32_t(t.integer("width", s.width, kMinFrameSide, kMaxFrameSide));
   s.height = uint32_t(t.integer("height", s.height, kMinFrameSide, kMaxFrameSide));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
@@ -46,6 +46,7 @@ void read_render(const TomlTable& t, SceneDesc& s) {
   s.mask_view = view == "mask";
   s.occlusion = t.boolean("occlusion", s.occlusion);
   s.shadows = t.boolean("shadows", s.shadows);
+  s.impostors = t.boolean("impostors", s.impostors);
   s.shadow_distance = float(t.number("shadow_distance", s.shadow_distance, 1.0, 1e5));
   s.shadow_resolution = uint32_t(t.integer("shadow_resolution", s.shadow_resolution, 64, kMaxShadowResolution));
   s.exposure = float(t.number("exposure", s.exposure, 1e-3, 1e3));

@@ -59,6 +59,7 @@ template <> struct Glsl<vec4> { static constexpr const char* name = "vec4"; };
 template <> struct Glsl<uvec4> { static constexpr const char* name = "uvec4"; };
 template <> struct Glsl<ivec4> { static constexpr const char* name = "ivec4"; };
 template <> struct Glsl<mat4> { static constexpr const char* name = "mat4"; };
+template <> struct Glsl<ImpostorDraw> { static constexpr const char* name = "ImpostorDraw"; };
 
 struct MemberDecl {
   std::string name;
@@ -99,24 +100,27 @@ const std::vector<StructDecl>& shared_structs() {
                       M(prev_camera), M(pyramid), M(instance_count), M(leaf_command_base), M(prune_mode),
                       M(view_flags), M(occlusion), M(tail_capacity), M(tail_job_capacity), M(shadows),
                       M(shadow_view_proj), M(shadow_planes), M(shadow_splits), M(shadow_texel), M(camera_forward),
-                      M(light)),
+                      M(light), M(impostor), M(impostors), M(frame_pad0), M(frame_pad1), M(frame_pad2)),
       GPU_STRUCT_DECL(Instance, M(position_scale), M(yaw_cos_sin), M(model), M(tint)),
       GPU_STRUCT_DECL(Model, M(bounding_sphere), M(bark_color), M(leaf_color), M(card_corners), M(lod_first_index),
                       M(lod_index_count), M(lod_vertex_offset), M(lod_error), M(lod_count), M(leaf_texture_layer),
                       M(card_first_index), M(card_index_count), M(card_vertex_offset), M(leaf_offset),
                       M(leaf_count), M(table_offset), M(has_tables), M(sample_offset), M(sample_count),
                       M(occlusion_margin), M(card_radius), M(bark_texture_layer), M(crown_extinction), M(pr_size0),
-                      M(leaf_quad_first_index)),
+                      M(leaf_quad_first_index), M(impostor_layer), M(impostor_cutoff), M(impostor_q)),
       GPU_STRUCT_DECL(HullSample, M(position), M(normal)),
       GPU_STRUCT_DECL(InstanceState, M(occlusion), M(visible), M(occluded), M(pad)),
       GPU_STRUCT_DECL(Leaf, M(position_scale), M(rotation), M(color), M(crown_depth)),
       GPU_STRUCT_DECL(TailJob, M(command), M(first_leaf), M(end_leaf), M(base)),
       GPU_STRUCT_DECL(DrawCommand, M(index_count), M(instance_count), M(first_index), M(vertex_offset),
-                      M(first_instance), M(instance), M(lambda), M(area_scale), M(shown_lambda), M(leaf_list)),
+                      M(first_instance), M(instance), M(lambda), M(area_scale), M(shown_lambda), M(leaf_list), M(fade)),
+      GPU_STRUCT_DECL(ImpostorEntry, M(instance), M(fade)),
+      GPU_STRUCT_DECL(ImpostorDraw, M(index_count), M(instance_count), M(first_index), M(vertex_offset),
+                      M(first_instance)),
       GPU_STRUCT_DECL(DrawCounts, M(branch_draws), M(leaf_draws), M(leaves_drawn), M(branch_triangles),
                       M(lod_draws), M(lambda_sum), M(occluded_instances), M(leaves_saved), M(triangles_saved),
                       M(tail_jobs), M(tail_groups_y), M(tail_groups_z), M(tail_leaves), M(shadow_branch_draws),
-                      M(shadow_leaf_draws), M(shadow_triangles), M(shadow_leaves)),
+                      M(shadow_leaf_draws), M(shadow_triangles), M(shadow_leaves), M(impostor_draws)),
       GPU_STRUCT_DECL(PrCounts, M(tp), M(fp), M(fn), M(pad)),
       GPU_STRUCT_DECL(PrCountPush, M(pixel_count), M(reference_offset), M(branch_offset), M(result), M(width), M(lattices)),
       GPU_STRUCT_DECL(DepthPyramidPush, M(source_size), M(destination_size), M(first_level), M(pad)),

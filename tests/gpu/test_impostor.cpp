@@ -1,0 +1,135 @@
+// Impostors on lavapipe with the validation layer (engine/tools/bake/impostor_bake.h,
+// engine/render/impostor_pass.h): the bake measures a good impostor, the cull pass switches to
+// it only where PR says it is at least as good as the mesh, and impostors cast shadows.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "engine/render/renderer.h"
+#include "engine/tools/bake/tree_bake.h"
+#include "tests/gpu/gpu_scenes.h"
+#include "tests/gpu/validated_gpu_test.h"
+
+using namespace forest;
+using namespace forest::test;
+
+namespace {
+
+class ImpostorTest : public ValidatedGpuTest {};
+
+// Broadleaf baked on two views with tables from 128 px down to 4 px, impostor included.
+const TreeModel& baked(vk::Context& ctx) {
+  static TreeModel model;
+  if (model.leaves.empty()) {
+    model = broadleaf();
+    TreeBakeSettings bake;
+    bake.views = 2;
+    bake.resolution = 128;
+    bake_tree_model(ctx, model, bake);
+  }
+  return model;
+}
+
+// A grove of 30 trees on flat ground, pruned over 150 m.
+Scene grove(const TreeModel& m) {
+  SceneDesc desc = flat_ground(192, 128, 800.0f);
+  desc.prune_distance = 150.0f;
+  desc.placement.count = 30;
+  desc.placement.seed = 5;
+  desc.placement.min_spacing = 5.0f;
+  desc.placement.radius = 30.0f;
+  return scene_of(std::move(desc), {m});
+}
+
+CameraDesc looking_at_grove(float distance) {
+  CameraDesc c;
+  c.position = {0.0f, 6.0f, -distance};
+  c.target = {0.0f, 4.0f, 0.0f};
+  c.fov_deg = 40.0f;
+  c.far = 5000.0f;
+  return c;
+}
+
+uint64_t dark_pixels(const FrameImage& img) {
+  uint64_t n = 0;
+  for (size_t i = 0; i < img.rgba.size(); i += 4) n += img.rgba[i] < 128;
+  return n;
+}
+
+}  // namespace
+
+// Q of the impostor against full detail, pooled over the bake's views, at every table size:
+// ≥ 0.75 (lavapipe: 0.80–0.86 from 128 to 8 px). A mirrored or turned view, or one sampled
+// from the wrong cell, draws another silhouette: Q ≈ 0.4–0.6.
+TEST_F(ImpostorTest, BakedImpostorMatchesTheMeshAtEverySize) {
+  const TreeModel& m = baked(ctx_);
+  ASSERT_TRUE(m.impostor.present());
+  ASSERT_EQ(m.impostor.q.size(), size_t(PR_SIZES));
+  for (uint32_t b = 0; b < PR_SIZES; ++b) {
+    std::printf("impostor Q at %g px: %.3f\n", double(pr_size(m.bake.pr_tables->size0, b)), double(m.impostor.q[b]));
+    if (pr_size(m.bake.pr_tables->size0, b) >= 8.0f) EXPECT_GE(m.impostor.q[b], 0.75f) << "size " << b;
+  }
+  std::printf("coverage cutoff %.2f\n", double(m.impostor.cutoff));
+}
+
+// The switch follows PR: near trees keep their mesh, far ones take the impostor, mode full
+// (Q = 1 everywhere) never does, and a far frame with impostors keeps Q within the equal-
+// quality tolerance of the same frame without them.
+TEST_F(ImpostorTest, SwitchedWhereTheImpostorIsAsGoodAsTheMesh) {
+  Scene scene = grove(baked(ctx_));
+  Renderer r(ctx_, scene, 192, 128, 1);
+  FrameSettings opt;
+  opt.prune_mode = PruneMode::opt;
+  opt.impostors = ImpostorMode::switched;
+  FrameStats near = r.render(looking_at_grove(40.0f), nullptr, opt);
+  FrameStats far = r.render(looking_at_grove(600.0f), nullptr, opt);
+  FrameSettings full = opt;
+  full.prune_mode = PruneMode::full;
+  FrameStats far_full = r.render(looking_at_grove(600.0f), nullptr, full);
+  std::printf("impostors near %u of %u, far %u of %u, full %u\n", near.impostors, near.branch_draws + near.impostors,
+              far.impostors, far.branch_draws + far.impostors, far_full.impostors);
+  EXPECT_LT(near.impostors, (near.branch_draws + near.impostors) / 4);
+  EXPECT_GT(far.impostors, (far.branch_draws + far.impostors) / 2);
+  EXPECT_EQ(far_full.impostors, 0u);
+
+  r.render_reference(looking_at_grove(600.0f), FrameSettings{});
+  FrameSettings mesh = opt;
+  mesh.impostors = ImpostorMode::off;
+  double q_mesh = r.compare_with_reference(looking_at_grove(600.0f), mesh).quality();
+  double q_imp = r.compare_with_reference(looking_at_grove(600.0f), opt).quality();
+  std::printf("far frame Q: opt %.4f, opt with impostors %.4f\n", q_mesh, q_imp);
+  EXPECT_GE(q_imp, q_mesh - kEqualQualityTolerance);
+}
+
+// An impostor casts its crown's shadow: seen from above with the sun's visibility shown, the
+// ground under one tree drawn as its impostor is about as dark as under its mesh, and the
+// cascades list it as an impostor caster.
+TEST_F(ImpostorTest, ImpostorsCastShadows) {
+  SceneDesc desc = flat_ground(160, 160, 200.0f);
+  desc.trees.push_back(TreeDesc{});
+  desc.sky.sun_direction = glm::normalize(glm::vec3(0.5f, 0.8f, 0.3f));
+  Scene scene = scene_of(std::move(desc), {baked(ctx_)});
+  Renderer r(ctx_, scene, 160, 160, 1);
+  CameraDesc above;
+  above.position = {0.5f, 45.0f, -12.0f};
+  above.target = {-3.0f, 0.0f, -2.0f};
+  above.fov_deg = 50.0f;
+  FrameSettings s;
+  s.shadows = true;
+  s.shadow_view = true;
+  FrameImage mesh, impostor, none;
+  r.render(above, &mesh, s);
+  s.impostors = ImpostorMode::always;
+  FrameStats st = r.render(above, &impostor, s);
+  s.shadows = false;
+  r.render(above, &none, s);
+  std::printf("dark pixels: mesh %llu, impostor %llu, no shadows %llu; impostor casters %u %u %u\n",
+              (unsigned long long)dark_pixels(mesh), (unsigned long long)dark_pixels(impostor),
+              (unsigned long long)dark_pixels(none), st.shadow_impostors[0], st.shadow_impostors[1],
+              st.shadow_impostors[2]);
+  EXPECT_EQ(st.shadow_casters[0] + st.shadow_casters[1] + st.shadow_casters[2], 0u);
+  EXPECT_GT(st.shadow_impostors[0] + st.shadow_impostors[1] + st.shadow_impostors[2], 0u);
+  EXPECT_GT(dark_pixels(mesh), 200u);
+  EXPECT_GT(double(dark_pixels(impostor)), 0.6 * double(dark_pixels(mesh)));
+  EXPECT_LT(double(dark_pixels(impostor)), 1.6 * double(dark_pixels(mesh)));
+}
