@@ -94,10 +94,11 @@ void read_terrain(const TomlTable& t, TerrainDesc& d, const std::filesystem::pat
 }
 
 void read_bake(const TomlTable& t, BakeDesc& b) {
-  t.check_keys({"priority", "views", "resolution"});
+  t.check_keys({"priority", "views", "resolution", "impostor"});
   b.priority = t.choice("priority", b.priority, {"random", "density", "orientation", "combined", "layered"});
   b.views = uint32_t(t.integer("views", b.views, 1, 64));
   b.resolution = uint32_t(t.integer("resolution", b.resolution, kMinBakeResolution, kMaxPrSize0));
+  b.impostor = t.boolean("impostor", b.impostor);
 }
 
 CameraPath read_path(const TomlTable& t) {

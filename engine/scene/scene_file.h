@@ -74,6 +74,7 @@ struct BakeDesc {
   std::string priority = "combined";
   uint32_t views = 6;
   uint32_t resolution = 512;  // projected size of the PR tables' size 0 (px across the bounding sphere)
+  bool impostor = true;       // bake the impostor (impostor_bake.h); false: meshes only (quicker bakes)
 };
 
 struct SpeciesDesc {

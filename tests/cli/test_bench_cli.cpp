@@ -32,7 +32,7 @@ class BenchCliTest : public CliDirTest {
     std::string text = "[render]\nwidth = 64\nheight = 48\nsamples = 1\n"
                        "[camera]\nposition = [0, 6, -30]\ntarget = [0, 4, 0]\n"
                        "[terrain]\nsize = 100\nresolution = 8\nheight = 0\n"
-                       "[bake]\nviews = 2\nresolution = 64\n"
+                       "[bake]\nviews = 2\nresolution = 64\nimpostor = false\n"
                        "[[species]]\npreset = \"" + kSourceDir + "/scenes/species/fig2_1.toml\"\nseed = 1\n"
                        "[[tree]]\nspecies = 0\nx = -3\nz = 0\n[[tree]]\nspecies = 0\nx = 4\nz = 6\n";
     if (with_path)

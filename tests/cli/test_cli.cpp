@@ -41,7 +41,7 @@ std::string scene_with(const std::string& body) {
          "[camera]\nposition = [0, 6, -24]\ntarget = [0, 5, 0]\n"
          "[terrain]\nsize = 100\nresolution = 8\n"
          "[[species]]\npreset = \"" + kSourceDir + "/scenes/species/broadleaf.toml\"\n" + body +
-         "\n[bake]\nviews = 1\nresolution = 32\n";  // presets are baked on first use: keep it cheap
+         "\n[bake]\nviews = 1\nresolution = 32\nimpostor = false\n";  // presets are baked on first use: keep it cheap
 }
 
 // Parses XML with expat: false when it is not well-formed; counts <polyline> elements.

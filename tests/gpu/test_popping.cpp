@@ -28,6 +28,7 @@ const TreeModel& baked_broadleaf(vk::Context& ctx, bool coarse = false) {
   if (model.leaves.empty()) {
     model = coarse ? coarse_broadleaf() : broadleaf();
     TreeBakeSettings bake;
+    bake.impostor = false;  // meshes only: impostors have their own test
     bake.views = 1;
     bake.resolution = 64;
     bake_tree_model(ctx, model, bake);

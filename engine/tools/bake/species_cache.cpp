@@ -59,7 +59,8 @@ std::string species_cache_key(const SpeciesDesc& species, const BakeDesc& bake) 
   h.add("forest species cache v" + std::to_string(kSpeciesCacheVersion));
   h.add(read_text(species.preset));
   h.add(species.seed ? "seed " + std::to_string(*species.seed) : "preset seed");
-  h.add("bake " + bake.priority + " " + std::to_string(bake.views) + " " + std::to_string(bake.resolution));
+  h.add("bake " + bake.priority + " " + std::to_string(bake.views) + " " + std::to_string(bake.resolution) +
+        (bake.impostor ? "" : " no impostor"));
   return h.hex();
 }
 
@@ -91,6 +92,7 @@ CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& b
   settings.priority = bake.priority;
   settings.views = bake.views;
   settings.resolution = bake.resolution;
+  settings.impostor = bake.impostor;
   if (ctx) {
     bake_tree_model(*ctx, out.model, settings);
   } else {
