@@ -22,7 +22,7 @@ TEST(SceneFile, DefaultsAndValues) {
 
 TEST(SceneFile, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(error_of("[render]\nwidth = 320\nheigth = 2\n"),
-            "s.toml:3: render.heigth: unknown key (expected one of: width, height, samples, lod_error_pixels, mode, prune_distance, transition, view, occlusion, shadows, shadow_distance, shadow_resolution, exposure, quality)");
+            "s.toml:3: render.heigth: unknown key (expected one of: width, height, samples, lod_error_pixels, mode, prune_distance, transition, view, occlusion, shadows, shadow_distance, shadow_resolution, exposure, quality, impostors)");
   EXPECT_EQ(error_of("[render]\n\nwidth = -3\n"), "s.toml:3: render.width: must be in [16, 8192], got -3");
   EXPECT_EQ(error_of("[camera]\nfov = nan\n"), "s.toml:2: camera.fov: must be a finite number, got nan");
   EXPECT_EQ(error_of("[camera]\nfov = \"wide\"\n"), "s.toml:2: camera.fov: expected a number, got string");
