@@ -6,8 +6,6 @@
 
 namespace forest {
 
-namespace {
-
 // The array is VK_FORMAT_R8G8B8A8_SRGB: color is averaged in linear light, not on the
 // encoded bytes (which would darken every mip a little).
 float srgb_to_linear(uint8_t v) {
@@ -20,8 +18,6 @@ uint8_t linear_to_srgb(float c) {
   float e = c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
   return uint8_t(std::lround(e * 255.0f));
 }
-
-}  // namespace
 
 Image8 resample(const Image8& src, uint32_t size) {
   Image8 out;

@@ -18,6 +18,11 @@ struct TextureArrayData {
 // An empty Image8 becomes an opaque white layer (untextured leaf cards stay solid).
 TextureArrayData build_leaf_texture_array(const std::vector<const Image8*>& images, uint32_t size);
 
+// The sRGB transfer function: an 8-bit encoded value to linear light in [0, 1], and back
+// (clamped, rounded).
+float srgb_to_linear(uint8_t v);
+uint8_t linear_to_srgb(float c);
+
 // Bilinear resample of an RGBA8 image to size x size.
 Image8 resample(const Image8& image, uint32_t size);
 // Next mip level (half size, 2x2 box filter; RGB averaged in linear light weighted by alpha).

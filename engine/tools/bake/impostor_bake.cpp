@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "engine/render/leaf_textures.h"
 #include "engine/render/renderer.h"
 #include "engine/tools/bake/pr_bake.h"
 #include "engine/tools/gallery/contact_sheet.h"
@@ -25,15 +26,6 @@ constexpr uint32_t kNeutralTint = 0x80808080u;  // unpack_tint: 1 in every chann
 // (PRUNE_TARGET): the views look the same, at a fraction of the leaves.
 constexpr float kViewQuality = 0.98f;
 
-float srgb_decode(uint8_t v) {
-  float c = float(v) / 255.0f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-uint8_t srgb_encode(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
-  float e = c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return uint8_t(std::lround(e * 255.0f));
-}
 
 // The model alone, unrotated at the origin with scale 1, so that world space is model space.
 Scene bake_scene(const TreeModel& model) {
@@ -62,7 +54,7 @@ void store_view(const FrameImage& mask, const FrameImage& albedo, const FrameIma
   for (uint32_t y = 0; y < IMPOSTOR_VIEW_SIZE; ++y)
     for (uint32_t x = 0; x < IMPOSTOR_VIEW_SIZE; ++x) {
       size_t at = (size_t(j * IMPOSTOR_VIEW_SIZE + y) * IMPOSTOR_ATLAS_SIZE + i * IMPOSTOR_VIEW_SIZE + x) * 4;
-      float c = srgb_decode(mask.pixel(x, y)[0]);
+      float c = srgb_to_linear(mask.pixel(x, y)[0]);
       uint8_t* a = &out.albedo.rgba[at];
       uint8_t* n = &out.normal_depth.rgba[at];
       n[3] = 255;
@@ -72,8 +64,8 @@ void store_view(const FrameImage& mask, const FrameImage& albedo, const FrameIma
         continue;
       }
       for (int k = 0; k < 3; ++k) {
-        a[k] = srgb_encode(srgb_decode(albedo.pixel(x, y)[k]) / c);
-        n[k] = srgb_encode(srgb_decode(normal.pixel(x, y)[k]) / c);
+        a[k] = linear_to_srgb(srgb_to_linear(albedo.pixel(x, y)[k]) / c);
+        n[k] = linear_to_srgb(srgb_to_linear(normal.pixel(x, y)[k]) / c);
       }
       a[3] = uint8_t(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
     }
