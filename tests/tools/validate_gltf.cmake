@@ -1,5 +1,6 @@
-# ctest driver: generate one preset with the forest CLI, then run the Khronos glTF-Validator
-# on it. Any error or warning fails the test.
+# ctest driver: generate one preset with the forest CLI (with -DBAKE=1 also bake it: hull,
+# tables, impostor), then run the Khronos glTF-Validator on it. Any error or warning fails
+# the test.
 # Usage: cmake -DFOREST=<exe> -DNODE=<node> -DSCRIPT=validate_gltf.mjs -DSPECIES=<toml>
 #              -DOUT=<glb> -DMODULES=<dir with node_modules/gltf-validator> -P validate_gltf.cmake
 foreach(var FOREST NODE SCRIPT SPECIES OUT MODULES)
@@ -21,6 +22,12 @@ if(NOT gen_rc EQUAL 0)
 endif()
 if(NOT EXISTS "${OUT}")
   message(FATAL_ERROR "forest generate succeeded but wrote no ${OUT}")
+endif()
+if(BAKE)
+  execute_process(COMMAND "${FOREST}" bake "${OUT}" --views 1 --resolution 32 RESULT_VARIABLE bake_rc)
+  if(NOT bake_rc EQUAL 0)
+    message(FATAL_ERROR "forest bake failed (${bake_rc}) for ${OUT}")
+  endif()
 endif()
 
 execute_process(
