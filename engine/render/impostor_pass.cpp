@@ -22,15 +22,14 @@ ImpostorPass create_impostor_pass(vk::Context& ctx, VkPipelineLayout layout, uin
   d.depth_format = kDepthFormat;
   d.samples = samples;
   p.draw = vk::create_graphics_pipeline(ctx, layout, d);
-  vk::GraphicsPipelineDesc s;
-  s.vertex = "impostor_vert";
+  // The shadow map's: depth only, its standard Z (shadow_pass.cpp). No depth bias: the
+  // fragment shader writes the depth, which the rasterizer's bias never touches.
+  vk::GraphicsPipelineDesc s = d;
   s.fragment = "impostor_shadow_frag";
-  s.vertex_input = false;
-  s.cull = VK_CULL_MODE_NONE;
+  s.color_format = VK_FORMAT_UNDEFINED;
   s.depth_format = kShadowFormat;
-  s.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;  // the shadow map's standard Z (shadow_pass.cpp)
-  s.depth_bias_constant = 1.0f;
-  s.depth_bias_slope = 1.5f;
+  s.samples = VK_SAMPLE_COUNT_1_BIT;
+  s.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
   p.shadow = vk::create_graphics_pipeline(ctx, layout, s);
   p.list = vk::create_buffer(ctx, sizeof(gpu::ImpostorEntry) * IMPOSTOR_LISTS * std::max(instance_count, 1u),
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::device);
