@@ -79,6 +79,7 @@ std::vector<std::pair<uint32_t, float>> trees_in_view(const Scene& scene, const 
 std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, const CameraPath& path,
                                         const BenchMode& mode, const BenchPlayOptions& options) {
   Renderer renderer(ctx, scene, options.width, options.height, scene.desc.samples);
+  if (options.memory) *options.memory = renderer.memory();
   std::optional<Renderer> reference;  // full-detail coverage for PR, created on first use
   FrameSettings settings = scene_frame_settings(scene.desc);
   settings.prune_mode = mode.prune_mode;

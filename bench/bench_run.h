@@ -59,6 +59,7 @@ struct BenchPlayOptions {
   // Full-detail coverage per path frame, kept across the modes that play the same Scene: a
   // reference of forest5000 on lavapipe takes minutes, and it is the same in every mode.
   std::map<uint32_t, FrameImage>* references = nullptr;
+  MemoryReport* memory = nullptr;  // when given: the device memory of the mode's renderer
 };
 
 // The frames of `path` at its fps from its first to its last key, every `every`-th, at most

@@ -18,6 +18,12 @@ vec3 rotate_yaw(vec3 p, vec2 cs) { return vec3(cs.x * p.x + cs.y * p.z, p.y, -cs
 
 vec3 rotate_quat(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 
+// The cascade that shades view depth `depth` (< frame.shadow_splits.w): the first whose slice
+// reaches past it.
+uint shadow_cascade(float depth) {
+  return depth < frame.shadow_splits.x ? 0u : depth < frame.shadow_splits.y ? 1u : SHADOW_CASCADES - 1u;
+}
+
 // First command of cascade c's draws (gpu_types.h: COMMANDS_PER_INSTANCE).
 uint shadow_command_base(uint c) { return frame.instance_count * (3u + 2u * c); }
 

@@ -42,6 +42,7 @@ using mat4 = glm::mat4;
 #define BINDING_IMPOSTOR_LIST 19    // ImpostorEntry per far tree drawn as an impostor (cull.comp -> impostor.vert)
 #define BINDING_IMPOSTOR_ALBEDO 20  // sampler2DArray: impostor atlases, albedo (sRGB) and coverage, one layer per model
 #define BINDING_IMPOSTOR_NORMALS 21 // sampler2DArray: the same atlases' normal (octahedral xy) and height
+#define BINDING_RECEIVER_MASK 22    // uint: per cascade and light-space cell, the deepest visible receiver
 
 // Descriptor bindings of depth_pyramid.comp's set (one set per pyramid level).
 #define PYRAMID_BINDING_SOURCE 0       // sampler2D: the depth buffer (level 0) or the level above
@@ -101,6 +102,12 @@ using mat4 = glm::mat4;
 #define SHADOW_CASCADES 3
 #define SHADOW_NONE 0xffffffffu  // DrawPush.cascade of the camera's own draws
 #define SHADOW_PCF_TEXELS 3      // the filter's footprint: 3x3 bilinear compare taps (lighting.glsl)
+// Receiver mask (receiver_mask.comp): per cascade a RECEIVER_MASK_CELLS² grid over the
+// cascade's map; each cell holds the largest light-space depth (floatBitsToUint, 0: none) of
+// the surfaces the previous frame saw there that the cascade shades, then one word with the
+// largest of the whole cascade.
+#define RECEIVER_MASK_CELLS 64
+#define RECEIVER_MASK_WORDS (RECEIVER_MASK_CELLS * RECEIVER_MASK_CELLS + 1)  // per cascade
 // The command buffer holds, for n instances: the camera's n branch draws, its 2n leaf draws
 // (prefix and occlusion tail), then per cascade n branch draws followed by n leaf draws.
 #define COMMANDS_PER_INSTANCE (3 + 2 * SHADOW_CASCADES)
@@ -149,6 +156,7 @@ GPU_STRUCT FrameData {
   vec4 prune;           // x = distance where d reaches 1 (m), y = transition band t, z = fixed λ or target Q, w = fixed s
   vec4 lod_camera;      // xyz the point branch LODs and λ are chosen from: the camera, unless frozen
   mat4 prev_view_proj;  // the frame the depth pyramid was built from
+  mat4 prev_inv_view_proj;  // its inverse: pyramid texels back to world points (receiver_mask.comp)
   vec4 prev_camera;     // xyz its camera position, w its near plane (m)
   vec4 pyramid;         // x, y = level-0 size in texels, z = level count
   uint instance_count;
@@ -174,7 +182,8 @@ GPU_STRUCT FrameData {
   // bake's search for it).
   vec4 impostor;
   uint impostors;       // IMPOSTORS_*
-  uint frame_pad0, frame_pad1, frame_pad2;
+  uint receiver_mask;   // 1: shadow_cull.comp skips casters no visible receiver needs (BINDING_RECEIVER_MASK)
+  uint frame_pad1, frame_pad2;
 };
 
 // Push constants of the tree and terrain vertex shaders: where a draw's commands start and

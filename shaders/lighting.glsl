@@ -23,7 +23,7 @@ float sun_shadow(vec3 p, vec3 n) {
   if (frame.shadows == 0u) return 1.0;
   float depth = dot(p - frame.camera_pos.xyz, frame.camera_forward.xyz);
   if (depth >= frame.shadow_splits.w) return 1.0;
-  uint c = depth < frame.shadow_splits.x ? 0u : depth < frame.shadow_splits.y ? 1u : 2u;
+  uint c = shadow_cascade(depth);
   vec3 toward_sun = dot(n, frame.sun_dir.xyz) >= 0.0 ? n : -n;
   vec4 q = frame.shadow_view_proj[c] * vec4(p + toward_sun * (1.5 * frame.shadow_texel[c]), 1.0);
   vec2 uv = q.xy * 0.5 + 0.5;

@@ -15,6 +15,10 @@
 // half of it), or where the impostor is at least as good as the mesh at the size the cascade
 // sees the tree with: the size at that same distance (impostor_switch.glsl), so far cascades,
 // whose texels are metres wide, take impostors long before the camera does.
+// With a receiver mask (receiver_mask.comp) a cascade also skips a tree whose light-space
+// footprint covers no cell in which the previous frame saw a surface that cascade shades: its
+// shadow would fall only where nobody looks (behind a hill, inside a stand the view does not
+// reach, past the last visible ground).
 #include "common.glsl"
 #include "tree_detail.glsl"
 #include "impostor_switch.glsl"
@@ -24,6 +28,30 @@ layout(local_size_x = CULL_GROUP_SIZE) in;
 layout(set = 0, binding = BINDING_COMMANDS, std430) writeonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_DRAW_COUNTS, std430) buffer Counts { DrawCounts counts; };
 layout(set = 0, binding = BINDING_IMPOSTOR_LIST, std430) writeonly buffer Impostors { ImpostorEntry impostors[]; };
+layout(set = 0, binding = BINDING_RECEIVER_MASK, std430) readonly buffer ReceiverMask { uint receiver_mask[]; };
+
+// Does any cell under the sphere's footprint in cascade c's map, grown by one cell (the PCF
+// taps, the receivers' normal offset, a camera that moved since the mask was made), hold a
+// visible receiver deeper from the sun than the sphere's nearest point? A footprint of more
+// than kMaxCells cells asks the cascade's deepest receiver alone.
+bool shades_a_receiver(uint c, vec3 center, float radius) {
+  const int kMaxCells = 256;
+  if (frame.receiver_mask == 0u) return true;
+  mat4 m = frame.shadow_view_proj[c];
+  vec3 q = (m * vec4(center, 1.0)).xyz;
+  uint nearest = floatBitsToUint(max(q.z - radius * length(vec3(m[0].z, m[1].z, m[2].z)), 0.0));
+  const uint base = c * RECEIVER_MASK_WORDS;
+  if (receiver_mask[base + RECEIVER_MASK_CELLS * RECEIVER_MASK_CELLS] <= nearest) return false;
+  vec2 uv = q.xy * 0.5 + 0.5;
+  float r = radius / (frame.shadow_texel[c] * frame.shadow_texel.w);  // the map spans texel · resolution metres
+  ivec2 lo = max(ivec2(floor((uv - r) * float(RECEIVER_MASK_CELLS))) - 1, ivec2(0));
+  ivec2 hi = min(ivec2(floor((uv + r) * float(RECEIVER_MASK_CELLS))) + 1, ivec2(RECEIVER_MASK_CELLS - 1));
+  if ((hi.x - lo.x + 1) * (hi.y - lo.y + 1) > kMaxCells) return true;
+  for (int y = lo.y; y <= hi.y; ++y)
+    for (int x = lo.x; x <= hi.x; ++x)
+      if (receiver_mask[base + uint(y * RECEIVER_MASK_CELLS + x)] > nearest) return true;
+  return false;
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -41,7 +69,7 @@ void main() {
     bool inside = true;
     for (uint p = 0; p < 6; ++p)
       if (dot(frame.shadow_planes[c * 6 + p].xyz, center) + frame.shadow_planes[c * 6 + p].w < -radius) inside = false;
-    if (!inside) continue;
+    if (!inside || !shades_a_receiver(c, center, radius)) continue;
     // frame.lod.x: pixels per metre at distance 1, so t metres are one pixel at t · lod.x.
     float cascade_distance = max(camera_distance, SHADOW_PCF_TEXELS * frame.shadow_texel[c] * frame.lod.x);
     float lambda, area_scale;

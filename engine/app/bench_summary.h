@@ -23,6 +23,7 @@ struct ModeSummary {
   double gpu_shadow_ms = 0, shadow_casters[SHADOW_CASCADES] = {}, shadow_triangles[SHADOW_CASCADES] = {};
   double impostors = 0, shadow_impostors[SHADOW_CASCADES] = {};  // per frame
   uint32_t pr_frames = 0;
+  MemoryReport memory;  // device memory of the renderer that played the mode
   // Shares of what the mode would draw without occlusion, and of the GPU frame.
   double leaves_saved_share() const { return leaves_saved / std::max(leaves + leaves_saved, 1.0); }
   double triangles_saved_share() const { return triangles_saved / std::max(triangles + triangles_saved, 1.0); }

@@ -115,7 +115,8 @@ BenchPlan plan_bench(const BenchArgs& args) {
 }
 
 std::vector<BenchFrame> play_mode(vk::Context& ctx, const Scene& scene, const BenchPlan& plan, const BenchArgs& args,
-                                  const BenchMode& mode, std::map<uint32_t, FrameImage>* references) {
+                                  const BenchMode& mode, std::map<uint32_t, FrameImage>* references,
+                                  MemoryReport* memory) {
   BenchPlayOptions play;
   play.width = plan.desc.width;
   play.height = plan.desc.height;
@@ -124,6 +125,7 @@ std::vector<BenchFrame> play_mode(vk::Context& ctx, const Scene& scene, const Be
   play.tree_pr = args.tree_pr;
   play.occlusion_warmup = args.occlusion_warmup;
   play.references = references;
+  play.memory = memory;
   ProgressBar bar("bench " + mode.name);
   play.progress = [&](double f) { bar.update(f); };
   return play_bench_path(ctx, scene, plan.camera_path(), mode, play);
@@ -149,7 +151,9 @@ std::vector<ModeSummary> play_modes(vk::Context& ctx, const Scene& scene, const 
       }
       s = &ordered.at(order);
     }
-    results.push_back(summarize(mode, play_mode(ctx, *s, plan, args, mode, refs)));
+    MemoryReport memory;
+    results.push_back(summarize(mode, play_mode(ctx, *s, plan, args, mode, refs, &memory)));
+    results.back().memory = memory;
   }
   return results;
 }
@@ -374,6 +378,24 @@ std::string shadow_note(const ModeSummary& m, const std::vector<ModeSummary>& mo
   return note + ".\n";
 }
 
+// A paragraph of summary.md on the device memory one mode's renderer holds (every mode
+// holds the same scene, the same targets and the same passes).
+std::string memory_note(const MemoryReport& m) {
+  auto mib = [](uint64_t b) { return double(b) / double(1 << 20); };
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "\nDevice memory of the scene: %.1f MiB (geometry %.1f, leaf and bark textures %.1f, impostors %.1f, "
+                "shadow map %.1f, render targets %.1f, per-frame passes %.1f).\n",
+                mib(m.total()), mib(m.geometry), mib(m.textures), mib(m.impostors), mib(m.shadows), mib(m.targets),
+                mib(m.passes));
+  return text;
+}
+
+nlohmann::ordered_json memory_json(const MemoryReport& m) {
+  return {{"total", m.total()},       {"geometry", m.geometry}, {"textures", m.textures}, {"impostors", m.impostors},
+          {"shadows", m.shadows},     {"targets", m.targets},   {"passes", m.passes}};
+}
+
 // summary.json, summary.md, frames_<mode>.csv and the two plots, with the table on stdout.
 void write_bench_results(const BenchReport& r) {
   const SceneDesc& desc = r.plan.desc;
@@ -414,6 +436,12 @@ void write_bench_results(const BenchReport& r) {
     std::string note = tree_pr_note(m, desc.quality);
     md << note;
     std::printf("%s", note.c_str());
+  }
+  if (!r.modes.empty()) {
+    std::string note = memory_note(r.modes.front().memory);
+    md << note;
+    std::printf("%s", note.c_str() + 1);
+    j["device_memory_bytes"] = memory_json(r.modes.front().memory);
   }
   const std::string table = table_7_4_note(r.modes, [&](const ModeSummary& m) { return r.cook(m); }, out / "saved.png", label);
   md << table;

@@ -45,6 +45,7 @@ struct DrawList {
   bool wireframe = false;   // the wire pipelines (must exist)
   bool keep_depth = false;  // store the depth (or its resolve) for the depth pyramid
   bool shadows = false;     // the shadow pass runs first (shadow_pass.h); never in coverage frames
+  bool receiver_mask = false;  // shadows: the receiver mask is made first (FrameData.receiver_mask)
   bool lattices = false;    // coverage frames of the bake: leaves through DrawPass::lattice_leaves
   bool instanced_leaves = false;  // the cull pass wrote instanced leaf draws (VIEW_LEAF_INSTANCED)
   bool impostors = false;         // the cull pass may have listed impostors (impostor_pass.h)

@@ -46,8 +46,19 @@ ShadowBounds scene_shadow_bounds(const Scene& scene) {
 
 Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_t height, uint32_t samples)
     : ctx_(ctx), scene_(scene), width_(width), height_(height) {
+  // Device memory by use: what each step below adds to the context's count.
+  uint64_t mark = ctx.memory_in_use;
+  auto take = [&] {
+    uint64_t now = ctx.memory_in_use, added = now - mark;
+    mark = now;
+    return added;
+  };
   targets_ = create_render_targets(ctx, {width, height}, samples);
+  memory_.targets = take();
   buffers_ = upload_scene(ctx, scene);
+  memory_.textures = buffers_.leaf_textures.allocated + buffers_.bark_albedo.allocated + buffers_.bark_normals.allocated;
+  memory_.impostors = buffers_.impostor_albedo.allocated + buffers_.impostor_normals.allocated;
+  memory_.geometry = take() - memory_.textures - memory_.impostors;
   descriptors_ = create_descriptor_table(ctx, kRendererBindingLists, kFramesInFlight);
   const VkPushConstantRange push_ranges[] = {kPrCountPushRange, kDrawPushRange};
   layout_ = vk::create_pipeline_layout(ctx, descriptors_.layout, push_ranges);
@@ -57,14 +68,19 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   draw_ = create_draw_pass(ctx, layout_, targets_.samples);
   pr_count_ = create_pr_count_pass(ctx, layout_, targets_.extent);
   pyramid_overlay_ = create_pyramid_overlay_pass(ctx, layout_);
+  memory_.passes = take();
   shadow_ = create_shadow_pass(ctx, layout_, buffers_.instance_count, scene.desc.shadow_resolution);
+  memory_.shadows = take();
   impostors_ = create_impostor_pass(ctx, layout_, buffers_.instance_count, targets_.samples);
+  memory_.impostors += take();
   shadow_bounds_ = scene_shadow_bounds(scene);
   pyramid_ = create_depth_pyramid(ctx, targets_.pyramid_source().view, targets_.extent, true);
   image_readback_ = vk::create_buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                       vk::MemoryUse::readback);
+  memory_.targets += take();
   create_slots();
   write_descriptors();
+  memory_.passes += take();
 }
 
 void Renderer::create_slots() {
@@ -168,6 +184,7 @@ std::vector<gpu::InstanceState> Renderer::instance_states() {
 void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const DrawList& list, bool occlusion, bool timed) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &slot.set, 0, nullptr);
   if (timed) begin_gpu_stats(cmd, slot.pipeline_stats, StatsPass::cull);
+  if (list.receiver_mask) record_receiver_mask(cmd, shadow_, pyramid_.size);
   record_cull_pass(cmd, cull_);
   if (list.shadows) {  // other counters and commands than cull.comp's, but the same buffers
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -396,9 +413,13 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   if (settings.occlusion) {
     fd.occlusion = OCCLUSION_ON | (cut ? OCCLUSION_CUT : 0u);
     fd.prev_view_proj = pyramid_view_proj_;
+    fd.prev_inv_view_proj = glm::inverse(pyramid_view_proj_);
     fd.prev_camera = glm::vec4(pyramid_camera_.position, pyramid_camera_.near);
     fd.pyramid = glm::vec4(float(pyramid_.size.width), float(pyramid_.size.height), float(pyramid_.levels), 0.0f);
   }
+  // The receiver mask needs a previous frame that saw nearly what this one sees.
+  fd.receiver_mask =
+      fd.shadows == 1 && settings.occlusion && !cut && pyramid_has_receivers_ && settings.receiver_mask ? 1u : 0u;
   std::memcpy(slot.frame.mapped, &fd, sizeof(fd));
   DrawList list;
   // Coverage and impostor bake frames: the trees alone on black.
@@ -408,6 +429,7 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   list.wireframe = settings.wireframe && has_wireframe() && !trees_alone;
   list.keep_depth = settings.occlusion;
   list.shadows = settings.shadows && !trees_alone;
+  list.receiver_mask = list.shadows && fd.receiver_mask == 1;
   list.impostors = settings.impostors != ImpostorMode::off;
   list.instanced_leaves = (fd.view_flags & VIEW_LEAF_INSTANCED) != 0;
   // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.
@@ -415,6 +437,7 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   record_frame(slot, output, list, settings.occlusion, overlay);
   // The pyramid now holds this frame (or nothing usable, without occlusion).
   pyramid_valid_ = settings.occlusion;
+  pyramid_has_receivers_ = list.background;
   pyramid_view_proj_ = cm.view_proj;
   pyramid_camera_ = camera;
   slot.stats = {};

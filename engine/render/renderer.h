@@ -74,6 +74,10 @@ struct FrameSettings {
   bool shadows = false;
   // Shows the shadow map's sun visibility as grey on terrain and trees (tests, debugging).
   bool shadow_view = false;
+  // With shadows and occlusion: casters whose shadow falls on no surface the previous frame
+  // saw are skipped per cascade (receiver_mask.comp). Off: every caster in a cascade's volume
+  // is drawn (tests compare the two).
+  bool receiver_mask = true;
   // Leaves as instances of their card instead of by vertex pulling (leaf_draw.glsl): the
   // comparison of `forest bench`'s mode opt-occl-instanced. Pulled unless set (or unless a
   // model's card is not a quad).
@@ -147,6 +151,18 @@ inline constexpr std::span<const Binding> kRendererBindingLists[] = {kSceneBindi
                                                                      kPyramidOverlayBindings, kShadowBindings,
                                                                      kImpostorBindings};
 
+// Device memory a renderer holds, by use (bytes of vkAllocateMemory: Context::memory_in_use
+// over its construction, host-visible readback buffers included).
+struct MemoryReport {
+  uint64_t geometry = 0;   // vertices, indices, instances, models, leaves, PR tables, hull samples
+  uint64_t textures = 0;   // leaf and bark textures
+  uint64_t impostors = 0;  // impostor atlases (impostor_textures.h) and the impostor lists
+  uint64_t shadows = 0;    // the cascades' shadow map and receiver mask
+  uint64_t targets = 0;    // colour, depth, resolve, depth pyramid, readback
+  uint64_t passes = 0;     // per-frame work: indirect commands, counts, occlusion state, frame slots
+  uint64_t total() const { return geometry + textures + impostors + shadows + targets + passes; }
+};
+
 class Renderer {
  public:
   static constexpr uint32_t kFramesInFlight = 2;
@@ -187,6 +203,7 @@ class Renderer {
   const DepthPyramid& depth_pyramid() const { return pyramid_; }
 
   uint32_t samples() const { return uint32_t(targets_.samples); }
+  const MemoryReport& memory() const { return memory_; }
   bool has_wireframe() const { return draw_.wire.terrain != VK_NULL_HANDLE; }
   // The resolved colour image of the last frame (sRGB, width × height) and the layout the
   // last render() left it in, for a present step that copies it to a window (forest walk).
@@ -256,7 +273,9 @@ class Renderer {
   vk::Buffer image_readback_;
   std::vector<CameraDesc> coverage_views_;
   // The frame the pyramid holds: its camera, and whether it is usable at all.
+  MemoryReport memory_;
   bool pyramid_valid_ = false;
+  bool pyramid_has_receivers_ = false;  // built by a frame with its terrain (not a coverage frame)
   glm::mat4 pyramid_view_proj_{1.0f};
   CameraDesc pyramid_camera_;
   VkImageLayout color_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;

@@ -31,6 +31,10 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
   p.resolution = resolution;
   p.instance_count = instance_count;
   p.cull = vk::create_compute_pipeline(ctx, layout, "shadow_cull_comp");
+  p.receivers = vk::create_compute_pipeline(ctx, layout, "receiver_mask_comp");
+  p.receiver_mask = vk::create_buffer(ctx, sizeof(uint32_t) * SHADOW_CASCADES * RECEIVER_MASK_WORDS,
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      vk::MemoryUse::device);
   vk::GraphicsPipelineDesc d;
   d.depth_format = kShadowFormat;
   d.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;  // standard Z: 0 toward the sun
@@ -65,7 +69,8 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
 }
 
 void destroy_shadow_pass(vk::Context& ctx, ShadowPass& p) {
-  for (VkPipeline pipeline : {p.cull, p.terrain, p.branches, p.leaves, p.leaves_instanced})
+  vk::destroy_buffer(ctx, p.receiver_mask);
+  for (VkPipeline pipeline : {p.cull, p.receivers, p.terrain, p.branches, p.leaves, p.leaves_instanced})
     vkDestroyPipeline(ctx.device, pipeline, nullptr);
   for (VkImageView v : p.layers) vkDestroyImageView(ctx.device, v, nullptr);
   vkDestroySampler(ctx.device, p.sampler, nullptr);
@@ -75,6 +80,18 @@ void destroy_shadow_pass(vk::Context& ctx, ShadowPass& p) {
 
 void write_shadow_bindings(DescriptorWrites& w, const ShadowPass& p) {
   w.image(BINDING_SHADOW_MAP, p.sampler, p.map.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  w.buffer(BINDING_RECEIVER_MASK, p.receiver_mask);
+}
+
+void record_receiver_mask(VkCommandBuffer cmd, const ShadowPass& p, VkExtent2D pyramid_size) {
+  vkCmdFillBuffer(cmd, p.receiver_mask.buffer, 0, VK_WHOLE_SIZE, 0);
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.receivers);
+  vkCmdDispatch(cmd, (pyramid_size.width + PYRAMID_GROUP_SIZE - 1) / PYRAMID_GROUP_SIZE,
+                (pyramid_size.height + PYRAMID_GROUP_SIZE - 1) / PYRAMID_GROUP_SIZE, 1);
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& p) {

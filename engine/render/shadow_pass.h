@@ -21,6 +21,8 @@ inline constexpr uint32_t kDefaultShadowResolution = 2048;
 
 struct ShadowPass {
   VkPipeline cull = VK_NULL_HANDLE;
+  VkPipeline receivers = VK_NULL_HANDLE;  // receiver_mask.comp
+  vk::Buffer receiver_mask;               // SHADOW_CASCADES × RECEIVER_MASK_WORDS bits
   VkPipeline terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE;
   VkPipeline leaves = VK_NULL_HANDLE, leaves_instanced = VK_NULL_HANDLE;  // pulled / instanced (draw_pass.h)
   vk::Image map;  // SHADOW_CASCADES layers; map.view is the 2D-array view the shaders sample
@@ -34,6 +36,7 @@ inline constexpr Binding kShadowBindings[] = {
     {BINDING_COMMANDS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT},
     {BINDING_DRAW_COUNTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+    {BINDING_RECEIVER_MASK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
 };
 
 // The draw push constants (vertex stage; impostors read the cascade in the fragment stage too), after PrCountPush's compute range.
@@ -45,6 +48,11 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
 void destroy_shadow_pass(vk::Context& ctx, ShadowPass& pass);
 void write_shadow_bindings(DescriptorWrites& writes, const ShadowPass& pass);
 
+// The receiver mask of this frame from the previous frame's depth pyramid (level 0 of
+// `pyramid_size` texels), for frames whose FrameData.receiver_mask is 1; set 0 bound to
+// compute. Before: the pyramid written (the frame's opening barrier). After: the mask visible
+// to shadow_cull.comp.
+void record_receiver_mask(VkCommandBuffer cmd, const ShadowPass& pass, VkExtent2D pyramid_size);
 // shadow_cull.comp (set 0 bound to compute; after record_cull_pass cleared the counts).
 void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& pass);
 // The depth renders of every cascade (set 0 bound to graphics by this call). Before: the

@@ -62,6 +62,9 @@ struct Context {
   // Validation messages of severity warning or error seen so far (tests assert 0).
   std::atomic<uint32_t> validation_messages{0};
   std::string last_validation_message;
+  // Bytes of device memory the engine's buffers and images hold now (vk::create_buffer and
+  // the image functions add, vk::destroy_* subtract; swapchain images are the driver's).
+  std::atomic<uint64_t> memory_in_use{0};
 };
 
 // Sanitizer builds only (a no-op otherwise): keeps the Vulkan drivers and layers loaded now

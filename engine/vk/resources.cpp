@@ -55,6 +55,8 @@ Buffer create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
     check(r, "vkAllocateMemory (buffer)");
   }
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+  b.allocated = req.size;
+  ctx.memory_in_use += req.size;
   if (use != MemoryUse::device) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;
 }
@@ -62,6 +64,7 @@ Buffer create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
 void destroy_buffer(Context& ctx, Buffer& b) {
   if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
   if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
+  ctx.memory_in_use -= b.allocated;
   b = {};
 }
 
@@ -104,6 +107,8 @@ Image create_image_2d(Context& ctx, VkExtent2D extent, VkFormat format, VkImageU
   mai.memoryTypeIndex = memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &img.memory));
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+  img.allocated = req.size;
+  ctx.memory_in_use += req.size;
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = img.image;
   vci.viewType = view_type;
@@ -180,6 +185,7 @@ void destroy_image(Context& ctx, Image& img) {
   if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
   if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
   if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+  ctx.memory_in_use -= img.allocated;
   img = {};
 }
 

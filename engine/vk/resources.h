@@ -13,6 +13,7 @@ struct Buffer {
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkDeviceSize size = 0;
   void* mapped = nullptr;  // host-visible buffers stay mapped
+  VkDeviceSize allocated = 0;  // bytes of its memory (Context::memory_in_use)
 };
 
 struct Image {
@@ -21,6 +22,7 @@ struct Image {
   VkImageView view = VK_NULL_HANDLE;
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{};
+  VkDeviceSize allocated = 0;  // bytes of its memory (Context::memory_in_use)
 };
 
 enum class MemoryUse { device, upload, readback };

@@ -135,6 +135,17 @@ TEST_F(Light, TreesOutsideTheViewCastTheirPrunedShadow) {
   };
   const double full = shadowed(1.0f), pruned = shadowed(0.2f);
   EXPECT_GT(full, 0.02) << "the tree behind the camera casts onto the ground in view";
+  {  // With occlusion feedback the receiver mask runs: the ground in view still needs the tree.
+    FrameSettings f;
+    f.shadows = f.shadow_view = f.occlusion = true;
+    FrameImage plain, masked;
+    f.receiver_mask = false;
+    renderer.render(cam, &plain, f);
+    f.receiver_mask = true;
+    FrameStats st = renderer.render(cam, &masked, f);
+    EXPECT_GE(st.shadow_casters[0] + st.shadow_casters[1] + st.shadow_casters[2], 1u);
+    EXPECT_EQ(masked.rgba, plain.rgba) << "the receiver mask dropped a shadow the camera sees";
+  }
   EXPECT_LT(pruned, 0.7 * full) << "a fifth of the leaves without compensation casts less shadow";
   for (uint32_t y = size / 2; y < size; ++y)  // the ground, lit everywhere without shadows
     for (uint32_t x = 0; x < size; ++x) ASSERT_EQ(lit.pixel(x, y)[0], 255) << "shadows off: everything lit";
@@ -318,4 +329,72 @@ TEST_F(Light, ATreeBetweenTheSunAndAnotherShadowsIt) {
   };
   const double alone = tree_visibility(false), shaded = tree_visibility(true);
   EXPECT_LT(shaded, 0.75 * alone) << "alone " << alone << ", behind the neighbour " << shaded;
+}
+
+// The receiver mask (receiver_mask.comp): trees behind a ridge the camera faces cast only onto
+// ground nobody sees, so no cascade draws them, while a tree in front of the ridge keeps its
+// shadow; the frame is the same pixel for pixel as without the mask.
+TEST_F(Light, CastersWhoseShadowsNobodySeesAreSkipped) {
+  const uint32_t size = 128;
+  SceneDesc d = flat_ground(size, size, 200.0f);
+  d.terrain.resolution = 100;
+  d.sky.sun_direction = glm::normalize(glm::vec3(0.3f, 0.8f, -0.6f));  // from -z: shadows fall toward +z
+  d.trees = {TreeDesc{0, 0.0f, 4.0f, 1.0f, 0.0f}};  // in front of the ridge
+  for (int i = 0; i < 9; ++i)                          // behind it
+    d.trees.push_back(TreeDesc{0, float(i % 3) * 10.0f - 10.0f, 40.0f + float(i / 3) * 10.0f, 1.0f, float(i) * 40.0f});
+  Scene s;
+  s.desc = d;
+  s.terrain = make_terrain(s.desc.terrain);
+  for (uint32_t j = 0; j <= s.terrain.desc.resolution; ++j)  // 30 m high at z = 20
+    for (uint32_t i = 0; i <= s.terrain.desc.resolution; ++i) {
+      float z = -100.0f + 200.0f * float(j) / float(s.terrain.desc.resolution);
+      s.terrain.heights[size_t(j) * (s.terrain.desc.resolution + 1) + i] = 30.0f * std::exp(-(z - 20.0f) * (z - 20.0f) / 50.0f);
+    }
+  s.models = {broadleaf()};
+  s.instances = place_trees(s.desc, s.terrain);
+  CameraDesc cam;
+  cam.position = {0.0f, 3.0f, -10.0f};
+  cam.target = {0.0f, 8.0f, 20.0f};
+  cam.fov_deg = 60.0f;
+  auto frame = [&](bool receiver_mask, FrameImage& image) {
+    Renderer renderer(ctx_, s, size, size, 1);
+    FrameSettings f;
+    f.shadows = f.shadow_view = f.occlusion = true;
+    f.receiver_mask = receiver_mask;
+    renderer.render(cam, nullptr, f);  // the depth the mask is made from
+    FrameStats st = renderer.render(cam, &image, f);
+    return st.shadow_casters[0] + st.shadow_casters[1] + st.shadow_casters[2];
+  };
+  FrameImage plain, masked;
+  const uint32_t all = frame(false, plain), needed = frame(true, masked);
+  EXPECT_GE(all, 10u) << "without the mask every tree in a cascade volume casts";
+  EXPECT_GE(needed, 1u) << "the tree in front of the ridge casts onto ground in view";
+  EXPECT_LE(needed, 3u) << "the trees behind the ridge cast where nobody looks";
+  EXPECT_EQ(masked.rgba, plain.rgba) << "the receiver mask changed the picture";
+  size_t dark = 0;
+  for (uint32_t y = 0; y < size; ++y)
+    for (uint32_t x = 0; x < size; ++x) dark += plain.pixel(x, y)[0] < 128;
+  EXPECT_GT(dark, 50u) << "the front tree's shadow is in view";
+}
+
+// Seen from above, the ground in view sits off the centre of its cascade's map (the map is
+// centred on the view slice, the ground below it lies down-sun of it): every tree's shadow
+// there must survive the receiver mask, pixel for pixel.
+TEST_F(Light, TheReceiverMaskKeepsEveryShadowSeenFromAbove) {
+  const uint32_t size = 128;
+  Scene s = grove(size);
+  FrameImage plain, masked;
+  for (bool receiver_mask : {false, true}) {
+    Renderer renderer(ctx_, s, size, size, 1);
+    FrameSettings f;
+    f.shadows = f.shadow_view = f.occlusion = true;
+    f.receiver_mask = receiver_mask;
+    renderer.render(top_down(3.0f, -2.0f, 40.0f), nullptr, f);
+    renderer.render(top_down(3.0f, -2.0f, 40.0f), receiver_mask ? &masked : &plain, f);
+  }
+  size_t dark = 0;
+  for (uint32_t y = 0; y < size; ++y)
+    for (uint32_t x = 0; x < size; ++x) dark += plain.pixel(x, y)[0] < 128;
+  EXPECT_GT(dark, size_t(size * size / 20)) << "the grove shades the ground";
+  EXPECT_EQ(masked.rgba, plain.rgba) << "the receiver mask dropped a shadow the camera sees";
 }

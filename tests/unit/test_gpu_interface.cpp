@@ -97,10 +97,10 @@ const std::vector<StructDecl>& shared_structs() {
   static const std::vector<StructDecl> structs = {
       GPU_STRUCT_DECL(FrameData, M(view_proj), M(inv_view_proj), M(camera_pos), M(sun_dir), M(sky_zenith),
                       M(sky_horizon), M(fog), M(frustum), M(lod), M(prune), M(lod_camera), M(prev_view_proj),
-                      M(prev_camera), M(pyramid), M(instance_count), M(leaf_command_base), M(prune_mode),
+                      M(prev_inv_view_proj), M(prev_camera), M(pyramid), M(instance_count), M(leaf_command_base), M(prune_mode),
                       M(view_flags), M(occlusion), M(tail_capacity), M(tail_job_capacity), M(shadows),
                       M(shadow_view_proj), M(shadow_planes), M(shadow_splits), M(shadow_texel), M(camera_forward),
-                      M(light), M(impostor), M(impostors), M(frame_pad0), M(frame_pad1), M(frame_pad2)),
+                      M(light), M(impostor), M(impostors), M(receiver_mask), M(frame_pad1), M(frame_pad2)),
       GPU_STRUCT_DECL(Instance, M(position_scale), M(yaw_cos_sin), M(model), M(tint)),
       GPU_STRUCT_DECL(Model, M(bounding_sphere), M(bark_color), M(leaf_color), M(card_corners), M(lod_first_index),
                       M(lod_index_count), M(lod_vertex_offset), M(lod_error), M(lod_count), M(leaf_texture_layer),
