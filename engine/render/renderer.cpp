@@ -69,7 +69,9 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
   pr_count_ = create_pr_count_pass(ctx, layout_, targets_.extent);
   pyramid_overlay_ = create_pyramid_overlay_pass(ctx, layout_);
   memory_.passes = take();
-  shadow_ = create_shadow_pass(ctx, layout_, buffers_.instance_count, scene.desc.shadow_resolution);
+  const uint32_t shadow_resolution =
+      scene.desc.shadow_resolution > 0 ? scene.desc.shadow_resolution : shadow_resolution_for(height);
+  shadow_ = create_shadow_pass(ctx, layout_, buffers_.instance_count, shadow_resolution);
   memory_.shadows = take();
   impostors_ = create_impostor_pass(ctx, layout_, buffers_.instance_count, targets_.samples);
   memory_.impostors += take();

@@ -35,6 +35,12 @@ glm::mat4 sun_rotation(glm::vec3 sun) {
 
 }  // namespace
 
+uint32_t shadow_resolution_for(uint32_t height) {
+  uint32_t r = 512;
+  while (r < 2 * height && r < 4096) r *= 2;
+  return r;
+}
+
 ShadowCascades compute_shadow_cascades(const CameraDesc& camera, float aspect, glm::vec3 sun, float distance,
                                        uint32_t resolution, const ShadowBounds& bounds) {
   ShadowCascades out;

@@ -42,6 +42,14 @@ struct ShadowBounds {
 inline constexpr float kShadowSplitLog = 0.75f;
 inline constexpr float kShadowSplitNear = 1.0f;
 
+// Texels per cascade side for a frame `height` pixels tall when the scene names none: the
+// power of two at or above 2 × height, within [512, 4096] (720 p: 2048, 360 p: 1024). A
+// cascade's texel then stays within about 1.5 camera pixels at its slice's near end, and the
+// casters' detail follows (shadow_cull.comp prunes to the PCF footprint): a fixed 2048 at
+// 360 p rendered shadow detail twice as fine as any pixel shows, at the cost of per-caster
+// triangles, which is what lavapipe pays for.
+uint32_t shadow_resolution_for(uint32_t height);
+
 // `sun` points toward the sun (unit). `resolution`: texels per side of each cascade.
 ShadowCascades compute_shadow_cascades(const CameraDesc& camera, float aspect, glm::vec3 sun, float distance,
                                        uint32_t resolution, const ShadowBounds& bounds);

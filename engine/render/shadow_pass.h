@@ -17,7 +17,6 @@
 namespace forest {
 
 inline constexpr VkFormat kShadowFormat = VK_FORMAT_D32_SFLOAT;
-inline constexpr uint32_t kDefaultShadowResolution = 2048;
 
 struct ShadowPass {
   VkPipeline cull = VK_NULL_HANDLE;

@@ -122,7 +122,7 @@ struct SceneDesc {
   bool shadows = true;            // [render] shadows: the sun's cascaded shadow maps (shadow_pass.h)
   bool impostors = false;         // [render] impostors: far trees as impostors where their baked Q allows (impostor_pass.h)
   float shadow_distance = 150.0f;  // [render] view depth (m) the cascades cover; beyond it, no sun shadows
-  uint32_t shadow_resolution = 2048;  // [render] texels per side of each cascade
+  uint32_t shadow_resolution = 0;  // [render] texels per side of each cascade; 0: shadow_resolution_for(height)
   float exposure = 1.0f;          // [render] scene-linear multiplier before the filmic tone map
   CameraDesc camera;
   SkyDesc sky;

@@ -133,3 +133,15 @@ TEST(ShadowCascades, TurningTheCameraKeepsEveryCascadesSize) {
     }
   }
 }
+
+// Without [render] shadow_resolution the cascades get twice the frame's height in texels,
+// rounded up to a power of two: 720 p keeps 2048, 360 p gets 1024, and the size stays within
+// [512, 4096].
+TEST(ShadowCascades, ResolutionFollowsTheFrameHeight) {
+  EXPECT_EQ(shadow_resolution_for(720), 2048u);
+  EXPECT_EQ(shadow_resolution_for(360), 1024u);
+  EXPECT_EQ(shadow_resolution_for(270), 1024u);
+  EXPECT_EQ(shadow_resolution_for(1080), 4096u);
+  EXPECT_EQ(shadow_resolution_for(64), 512u);
+  EXPECT_EQ(shadow_resolution_for(5000), 4096u);
+}
