@@ -360,7 +360,8 @@ std::string shadow_note(const ModeSummary& m, const std::vector<ModeSummary>& mo
   const ModeSummary* off = nullptr;
   for (const ModeSummary& o : modes)
     if (!o.mode.shadows && o.mode.prune_mode == m.mode.prune_mode && o.mode.occlusion == m.mode.occlusion &&
-        o.mode.priority == m.mode.priority)
+        o.mode.priority == m.mode.priority && o.mode.impostors == m.mode.impostors &&
+        o.mode.instanced_leaves == m.mode.instanced_leaves)
       off = &o;
   char row[768];
   std::snprintf(row, sizeof row,
