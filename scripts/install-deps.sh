@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages forest needs, only those that are missing.
-# Idempotent and quiet when everything is present.
+# Idempotent and quiet when everything is present. --test: also what only the tests use
+# (a single-node Slurm for deploy/slurm's test; scripts/test.sh passes it).
 set -euo pipefail
 
 packages=(
@@ -15,6 +16,9 @@ packages=(
   clang libclang-rt-14-dev
   nodejs npm
 )
+if [[ "${1:-}" == --test ]]; then
+  packages+=(slurm-wlm munge)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 
-scripts/install-deps.sh
+scripts/install-deps.sh --test
 
 # Khronos glTF-Validator from npm, pinned by tests/tools/package-lock.json.
 mkdir -p build/npm

@@ -173,4 +173,22 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct CacheArgs {
+  std::string action;                // ls | verify | clear | build
+  std::string cache;                 // folder (default: default_cache_dir())
+  bool stale_only = false;           // clear --stale: only entries verify would name
+  std::vector<std::string> presets;  // build: species presets
+  std::string scene;                 // build: a scene's [[species]] with its [bake]
+  uint32_t jobs = 1;                 // build: bakes at once, each on its own device context
+  std::string shard;                 // build: "i/n", every n-th spec from the i-th
+  std::optional<std::string> priority;  // build: [bake] settings for presets
+  std::optional<uint32_t> views, resolution;
+  bool no_impostor = false;
+  std::string device;
+  bool validate = false;
+};
+// verify exits 1 when an entry is stale or corrupt.
+int run_cache(const CacheArgs& args);
+int run_cache_build(const CacheArgs& args);
+
 }  // namespace forest::app

@@ -263,18 +263,46 @@ Command add_bench(CLI::App& cli) {
       ->transform(CLI::IsMember(std::map<std::string, bool>{{"on", true}, {"off", false}}));
   add_size_options(cmd, a.width, a.height);
   cmd->add_option("--probe-instances", a.probe_instances, "Throughput probe: sheets of 18 432 triangles drawn (0: no probe)")->check(CLI::Range(0u, kMaxProbeInstances));
-  cmd->add_option("--out", a.out, "Output folder (must exist)")->required();
+  cmd->add_option("--out", a.out, "Output folder (made when missing)")->required();
   cmd->add_option("--device", a.device, kDeviceHelp);
   cmd->add_option("--cache", a.cache, kCacheHelp);
   cmd->add_flag("--validate", a.validate, "Enable the Khronos validation layer (also FOREST_VALIDATION=1)");
   return command(cmd, args, app::run_bench);
 }
 
+// forest cache ls | verify | clear | build: one subcommand with four of its own.
+Command add_cache(CLI::App& cli) {
+  auto a = std::make_shared<app::CacheArgs>();
+  auto* cmd = cli.add_subcommand("cache", "The species cache: list, verify, clear or fill (in parallel, in shards) its entries");
+  cmd->require_subcommand(1);
+  cmd->add_option("--cache", a->cache, kCacheHelp);
+  auto* ls = cmd->add_subcommand("ls", "List the entries, what each was made from and which device measured it");
+  auto* verify = cmd->add_subcommand("verify", "Re-hash every entry and its inputs; name the stale and corrupt ones (exit 1 if any)");
+  auto* clear = cmd->add_subcommand("clear", "Remove entries (all, or with --stale those verify names)");
+  clear->add_flag("--stale", a->stale_only, "Only stale or corrupt entries");
+  auto* build = cmd->add_subcommand("build", "Bake species into the cache ahead of time");
+  build->add_option("presets", a->presets, "Species presets (.toml)");
+  build->add_option("--scene", a->scene, "Every preset species of this scene, with its [bake]");
+  build->add_option("--jobs", a->jobs, "Bakes at once (each on its own device context)")->check(CLI::Range(1, 64));
+  build->add_option("--shard", a->shard, "i/n: only every n-th spec from the i-th (sorted by cache key), for array jobs");
+  build->add_option("--priority", a->priority, "Presets' leaf order: random, density, orientation, combined, layered");
+  build->add_option("--views", a->views, "Presets' PR views")->check(CLI::Range(1, 64));
+  build->add_option("--resolution", a->resolution, "Presets' PR table size 0 (px)")->check(CLI::Range(kMinBakeResolution, kMaxPrSize0));
+  build->add_flag("--no-impostor", a->no_impostor, "Presets baked without an impostor (quicker)");
+  build->add_option("--device", a->device, kDeviceHelp);
+  build->add_flag("--validate", a->validate, kValidateHelp);
+  for (auto* sub : {ls, verify, clear, build}) sub->add_option("--cache", a->cache, kCacheHelp);
+  return {cmd, [a, ls, verify, clear] {
+            a->action = *ls ? "ls" : *verify ? "verify" : *clear ? "clear" : "build";
+            return app::run_cache(*a);
+          }};
+}
+
 // Every subcommand, in the order `forest --help` lists them.
 std::vector<Command> add_commands(CLI::App& cli) {
   std::vector<Command> commands;
   for (Command (*add)(CLI::App&) : {add_info, add_generate, add_make_inputs, add_learn, add_preview, add_gallery,
-                                    add_bake, add_report, add_measure, add_render, add_compare, add_walk, add_bench})
+                                    add_bake, add_report, add_measure, add_render, add_compare, add_walk, add_bench, add_cache})
     commands.push_back(add(cli));
   return commands;
 }

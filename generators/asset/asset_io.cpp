@@ -13,6 +13,8 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cstdio>
 #include <fstream>
 
 #include "generators/core/input_error.h"
@@ -25,8 +27,15 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const uint8_
   fs::path dir = path.parent_path();
   if (!dir.empty() && !fs::is_directory(dir, ec))
     throw InputError(path.string(), 0, "", "directory " + dir.string() + " does not exist");
+  // A temporary name no other writer uses: other threads (a counter), processes (the pid)
+  // and machines sharing the folder (the host name) each write their own, and the rename
+  // lets exactly one complete file stand.
+  static std::atomic<uint64_t> writes{0};
+  char host[256] = "host";
+  if (::gethostname(host, sizeof host - 1) != 0) std::snprintf(host, sizeof host, "host");
+  host[sizeof host - 1] = 0;
   fs::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
+  tmp += ".tmp-" + std::string(host) + "-" + std::to_string(::getpid()) + "-" + std::to_string(writes++);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(path.string(), 0, "", "cannot write (permission denied or not a directory?)");

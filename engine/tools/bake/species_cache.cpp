@@ -3,46 +3,51 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
+#include "engine/tools/bake/build_identity.h"
+#include "engine/tools/bake/cache_record.h"
 #include "engine/tools/bake/tree_bake.h"
 #include "engine/vk/context.h"
 #include "generators/asset/asset_io.h"
 #include "generators/core/input_error.h"
+#include "generators/core/content_hash.h"
 #include "generators/species/registry.h"
+#include "generators/species/species_inputs.h"
 
 namespace forest {
 
+namespace fs = std::filesystem;
+
 namespace {
 
-// FNV-1a 64 over the bytes, run twice with different offsets: a 128-bit content key (not
-// cryptographic; collisions between honest specs are what matters).
-struct ContentHash {
-  uint64_t a = 0xcbf29ce484222325ull, b = 0x84222325cbf29ce4ull;
-  void add(std::string_view bytes) {
-    for (unsigned char c : bytes) {
-      a = (a ^ c) * 0x100000001b3ull;
-      b = (b ^ c) * 0x100000001b3ull;
-      b ^= b >> 29;
-    }
-    // Length-prefix-free framing: a separator after every field.
-    a = (a ^ 0xff) * 0x100000001b3ull;
-    b = (b ^ 0xfe) * 0x100000001b3ull;
-  }
-  std::string hex() const {
-    char s[33];
-    std::snprintf(s, sizeof(s), "%016llx%016llx", (unsigned long long)a, (unsigned long long)b);
-    return s;
-  }
-};
+// The device that measured an entry's tables: name and driver (VK_KHR_driver_properties,
+// core in Vulkan 1.2).
+void describe_device(const vk::Context& ctx, CacheRecord& r) {
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 p{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+  vkGetPhysicalDeviceProperties2(ctx.physical, &p);
+  r.device = p.properties.deviceName;
+  r.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+}
 
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), 0, "", "cannot read species preset");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+void bake_with(vk::Context* ctx, TreeModel& model, const TreeBakeSettings& settings, CacheRecord& record) {
+  if (ctx) {
+    bake_tree_model(*ctx, model, settings);
+    describe_device(*ctx, record);
+    return;
+  }
+  vk::Context own;
+  vk::ContextOptions o;
+  o.validation = vk::validation_from_env();
+  try {
+    vk::create_context(own, o);
+    bake_tree_model(own, model, settings);
+    describe_device(own, record);
+  } catch (...) {
+    vk::destroy_context(own);
+    throw;
+  }
+  vk::destroy_context(own);
 }
 
 }  // namespace
@@ -54,22 +59,43 @@ std::filesystem::path default_cache_dir() {
   return ".forest-cache";
 }
 
-std::string species_cache_key(const SpeciesDesc& species, const BakeDesc& bake) {
+SpeciesKey species_key(const SpeciesDesc& species, const BakeDesc& bake) {
+  SpeciesKey k;
+  std::vector<SpeciesInput> inputs = species_inputs(species.preset);
   ContentHash h;
-  h.add("forest species cache v" + std::to_string(kSpeciesCacheVersion));
-  h.add(read_text(species.preset));
+  // The layout of the key itself; what the code does is in the build identity.
+  h.add("forest species cache key 2");
+  h.add(bake_build_identity());
+  for (const SpeciesInput& i : inputs) {
+    // Names relative to the preset's folder and contents: a moved or renamed project keeps
+    // its entries, an edited mask does not.
+    std::string hash = content_hash(i.bytes);
+    h.add(i.file == species.preset ? std::string("preset") : i.name);
+    h.add(hash);
+    std::error_code ec;
+    fs::path abs = fs::weakly_canonical(fs::absolute(i.file, ec), ec);
+    k.inputs.push_back({i.name, abs.generic_string(), hash});
+  }
   h.add(species.seed ? "seed " + std::to_string(*species.seed) : "preset seed");
   h.add("bake " + bake.priority + " " + std::to_string(bake.views) + " " + std::to_string(bake.resolution) +
         (bake.impostor ? "" : " no impostor"));
-  return h.hex();
+  k.key = h.hex();
+  return k;
+}
+
+std::string species_cache_key(const SpeciesDesc& species, const BakeDesc& bake) { return species_key(species, bake).key; }
+
+fs::path species_cache_file(const SpeciesDesc& species, const std::string& key, const fs::path& cache_dir) {
+  return cache_dir / (species.preset.stem().string() + "-" + key + ".glb");
 }
 
 CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& bake,
-                                   const std::filesystem::path& cache_dir, vk::Context* ctx) {
+                                   const fs::path& cache_dir, vk::Context* ctx) {
   CachedSpecies out;
-  out.file = cache_dir / (species.preset.stem().string() + "-" + species_cache_key(species, bake) + ".glb");
+  SpeciesKey key = species_key(species, bake);
+  out.file = species_cache_file(species, key.key, cache_dir);
   std::error_code ec;
-  if (std::filesystem::is_regular_file(out.file, ec)) {
+  if (fs::is_regular_file(out.file, ec)) {
     try {
       out.model = load_glb(out.file);
       out.hit = true;
@@ -79,7 +105,7 @@ CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& b
       // rename): rebuild it below.
     }
   }
-  std::filesystem::create_directories(cache_dir, ec);
+  fs::create_directories(cache_dir, ec);
   if (ec) throw InputError(cache_dir.string(), 0, "FOREST_CACHE", "cannot create cache folder: " + ec.message());
 
   using clock = std::chrono::steady_clock;
@@ -93,24 +119,23 @@ CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& b
   settings.views = bake.views;
   settings.resolution = bake.resolution;
   settings.impostor = bake.impostor;
-  if (ctx) {
-    bake_tree_model(*ctx, out.model, settings);
-  } else {
-    vk::Context own;
-    vk::ContextOptions o;
-    o.validation = vk::validation_from_env();
-    try {
-      vk::create_context(own, o);
-      bake_tree_model(own, out.model, settings);
-    } catch (...) {
-      vk::destroy_context(own);
-      throw;
-    }
-    vk::destroy_context(own);
-  }
+  CacheRecord record;
+  bake_with(ctx, out.model, settings, record);
   out.generate_seconds = std::chrono::duration<double>(t1 - t0).count();
   out.bake_seconds = std::chrono::duration<double>(clock::now() - t1).count();
-  save_glb(out.model, out.file);  // temporary file + rename
+  std::vector<uint8_t> bytes = encode_glb(out.model);
+  record.key = key.key;
+  record.preset = key.inputs.front().file;
+  record.seed = species.seed;
+  record.bake = bake;
+  record.inputs = std::move(key.inputs);
+  record.build = bake_build_identity();
+  record.asset_bytes = bytes.size();
+  record.asset_hash = content_hash(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  // The record first: a reader that finds the .glb finds its record (each write is atomic).
+  std::string json = record_json(record);
+  write_file_atomic(record_path(out.file), std::span(reinterpret_cast<const uint8_t*>(json.data()), json.size()));
+  write_file_atomic(out.file, bytes);
   // Render from the stored asset on a miss too, so a hit gives the very same image.
   out.model = load_glb(out.file);
   return out;

@@ -1,14 +1,20 @@
 // Species cache: a species spec ([[species]] preset + seed) is generated and baked once,
-// then loaded from `<cache dir>/<preset stem>-<key>.glb`. The key hashes what the baked bytes
-// depend on: the preset file's text, the seed, the bake settings and kSpeciesCacheVersion
-// (bumped by hand whenever a generator or the bake changes its output).
-// Writes are atomic (temporary file + rename), so concurrent runs at worst bake twice.
+// then loaded from `<cache dir>/<preset stem>-<key>.glb`. The key hashes everything the baked
+// bytes depend on: the contents of the preset and of every file it names (species_inputs.h:
+// masks, strokes, drawings, sample trees, plantons models), the seed, the bake settings and
+// the build identity of the generator and bake code (build_identity.h), so no entry outlives
+// the inputs or the code that made it. Beside each entry, a record (cache_record.h) says what
+// it was made from and which device measured it. Writes are atomic (temporary file +
+// rename), so concurrent runs, on one machine or many sharing the folder, at worst bake twice
+// and leave one complete entry.
 #pragma once
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "engine/scene/scene.h"
+#include "engine/tools/bake/cache_record.h"
 #include "generators/model/tree_model.h"
 
 namespace forest::vk {
@@ -17,17 +23,20 @@ struct Context;
 
 namespace forest {
 
-// Bumped whenever a generator or the bake changes what a spec produces.
-constexpr int kSpeciesCacheVersion = 8;  // 8: impostors; 3: bark textures, physical bark uv, seam-keeping LODs; 4: crown depths; 5: PR tables per
-                                         // projected size; 6: λ_opt = λ_Cook below the first measured λ;
-                                         // 7: structural branch LODs
-
 // $FOREST_CACHE, else $XDG_CACHE_HOME/forest, else $HOME/.cache/forest, else build-less
 // fallback ".forest-cache" in the current folder.
 std::filesystem::path default_cache_dir();
 
-// 32 hex digits. InputError when the preset cannot be read.
+struct SpeciesKey {
+  std::string key;                      // 32 hex digits
+  std::vector<CacheInputRecord> inputs;  // what it hashed, the preset first
+};
+// InputError when the preset cannot be read.
+SpeciesKey species_key(const SpeciesDesc& species, const BakeDesc& bake);
 std::string species_cache_key(const SpeciesDesc& species, const BakeDesc& bake);
+// `<cache dir>/<preset stem>-<key>.glb`.
+std::filesystem::path species_cache_file(const SpeciesDesc& species, const std::string& key,
+                                         const std::filesystem::path& cache_dir);
 
 struct CachedSpecies {
   TreeModel model;
