@@ -25,6 +25,7 @@ cmake --build --preset fuzz
 
 mkdir -p build-fuzz/artifacts
 status=0
+total=0
 for t in "${targets[@]}"; do
   mkdir -p "build-fuzz/corpus/$t"
   echo "fuzz.sh: $t for ${seconds} s"
@@ -38,8 +39,11 @@ for t in "${targets[@]}"; do
     tail -n 40 "build-fuzz/fuzz-$t.log" >&2
     status=1
   else
-    grep -E "stat::number_of_executed_units|cov:" "build-fuzz/fuzz-$t.log" | tail -n 2 | tr '\n' ' '
-    echo
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "build-fuzz/fuzz-$t.log" | tail -n 1)
+    cov=$(grep -oE "cov: [0-9]+ ft: [0-9]+" "build-fuzz/fuzz-$t.log" | tail -n 1)
+    echo "fuzz.sh: $t: ${runs:-0} executions in ${seconds} s, ${cov:-no coverage line}, 0 findings"
+    total=$(( total + ${runs:-0} ))
   fi
 done
+echo "fuzz.sh: ${#targets[@]} targets, $total executions in all, $([[ $status -eq 0 ]] && echo 0 findings || echo 'a FINDING (above)')"
 exit $status

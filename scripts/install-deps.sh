@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages forest needs, only those that are missing.
 # Idempotent and quiet when everything is present. --test: also what only the tests use
-# (a single-node Slurm for deploy/slurm's test; scripts/test.sh passes it).
+# (a single-node Slurm for deploy/slurm's test; Blender and Chromium, the clients that
+# `forest export`'s files are loaded in; scripts/test.sh passes it).
 set -euo pipefail
 
 packages=(
@@ -17,7 +18,7 @@ packages=(
   nodejs npm
 )
 if [[ "${1:-}" == --test ]]; then
-  packages+=(slurm-wlm munge)
+  packages+=(slurm-wlm munge blender python3-numpy chromium python3)
 fi
 
 missing=()

@@ -31,6 +31,29 @@ if [[ "${FOREST_FUZZ_SECONDS:-35}" != 0 ]]; then
   scripts/fuzz.sh "${FOREST_FUZZ_SECONDS:-35}" || fuzz_status=$?
 fi
 
+# The unit and CLI tests under ASan + UBSan (gcc -O1, build-asan/, the asan preset): every
+# run. The CLI tests drive the instrumented `forest` through bakes, renders, the cache and
+# export on lavapipe. FOREST_ASAN=0 skips; the whole suite under ASan (GPU tests too) is
+# `cmake --workflow --preset asan` (README, Hardening).
+asan_status=0
+if [[ "${FOREST_ASAN:-1}" != 0 ]]; then
+  asan_start=$(date +%s)
+  [[ -f build-asan/build.ninja ]] || cmake --preset asan >/dev/null
+  if ! cmake --build build-asan --target unit_tests cli_tests forest >build-asan/build.log 2>&1; then
+    tail -n 40 build-asan/build.log
+    asan_status=1
+  elif ! ctest --preset asan -R '^(unit|cli)\.' -j"$(nproc)" >build-asan/ctest.log 2>&1; then
+    tail -n 200 build-asan/ctest.log
+    asan_status=1
+  else
+    echo "test.sh: ASan + UBSan: $(grep -E 'tests passed' build-asan/ctest.log)"
+  fi
+  echo "test.sh: ASan + UBSan unit and CLI tests took $(( $(date +%s) - asan_start )) s (log: build-asan/ctest.log)"
+fi
+
 cd build
-ctest --output-on-failure -j"$(nproc)" "$@"
-[[ $fuzz_status -eq 0 ]] || { echo "test.sh: fuzzing found a failure (see above; inputs in build-fuzz/artifacts/)"; exit 1; }
+ctest_status=0
+ctest --output-on-failure -j"$(nproc)" "$@" || ctest_status=$?
+[[ $fuzz_status -eq 0 ]] || echo "test.sh: fuzzing found a failure (see above; inputs in build-fuzz/artifacts/)"
+[[ $asan_status -eq 0 ]] || echo "test.sh: the ASan + UBSan unit and CLI tests failed (above; build-asan/ctest.log)"
+[[ $fuzz_status -eq 0 && $asan_status -eq 0 && $ctest_status -eq 0 ]]

@@ -1,8 +1,10 @@
 #include "engine/app/app_common.h"
 
 #include <cstdio>
+#include <memory>
 #include <span>
 
+#include "engine/app/progress.h"
 #include "engine/tools/bake/species_cache.h"
 #include "generators/asset/asset_io.h"
 
@@ -50,7 +52,16 @@ void override_size(SceneDesc& desc, std::optional<uint32_t> width, std::optional
 Scene build_cached_scene(const SceneDesc& desc, const std::string& scene_file, const std::string& cache_dir) {
   SpeciesCacheOptions cache;
   cache.dir = cache_dir;
-  cache.log = print_line;
+  // A bake on a cache miss takes 20-60 s a species: a bar while it runs (terminals only).
+  auto bar = std::make_shared<ProgressBar>("");
+  cache.log = [bar](const std::string& line) {
+    bar->finish();
+    print_line(line);
+  };
+  cache.progress = [bar](const SpeciesDesc& s, double f) {
+    bar->relabel("baking " + s.preset.filename().string());
+    bar->update(f);
+  };
   SceneBuildOptions build;
   build.species = cached_species_source(cache);
   Scene scene = build_scene(desc, build);

@@ -4,6 +4,7 @@
 
 #include "engine/app/app_common.h"
 #include "engine/app/commands.h"
+#include "engine/app/progress.h"
 #include "engine/present/image_io.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/camera_path.h"
@@ -80,8 +81,17 @@ FrameStats render_still(vk::Context& ctx, const Scene& scene, const SceneDesc& d
   // Occlusion feeds back from one frame to the next: a still picture shows the steady
   // state, after the hidden trees have thinned out (kWarmupFrames from the same camera).
   constexpr int kWarmupFrames = 5;
-  for (int i = 0; settings.occlusion && i < kWarmupFrames; ++i) renderer.render(camera, nullptr, settings);
-  return renderer.render(camera, &image, settings);
+  const int frames = settings.occlusion ? kWarmupFrames + 1 : 1;
+  // A forest frame on lavapipe takes seconds: a bar over the frames (terminals only).
+  ProgressBar bar("render");
+  bar.update(0.0);
+  for (int i = 0; i + 1 < frames; ++i) {
+    renderer.render(camera, nullptr, settings);
+    bar.update(double(i + 1) / frames);
+  }
+  FrameStats stats = renderer.render(camera, &image, settings);
+  bar.update(1.0);
+  return stats;
 }
 
 // --stats: where the time went, what was drawn against the full-detail size, and the GPU's

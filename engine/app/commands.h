@@ -173,6 +173,13 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct ExportArgs {
+  std::string model;  // .glb asset
+  std::string out;    // X.glb; LODs beside it as X_LOD1.glb ...
+  bool flatten = false;
+};
+int run_export(const ExportArgs& args);
+
 struct CacheArgs {
   std::string action;                // ls | verify | clear | build
   std::string cache;                 // folder (default: default_cache_dir())

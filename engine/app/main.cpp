@@ -270,6 +270,15 @@ Command add_bench(CLI::App& cli) {
   return command(cmd, args, app::run_bench);
 }
 
+Command add_export(CLI::App& cli) {
+  auto args = std::make_shared<app::ExportArgs>();
+  auto* cmd = cli.add_subcommand("export", "Write a model for other clients (Blender, three.js, Godot): one .glb per LOD, no engine data");
+  cmd->add_option("model", args->model, "Model (.glb)")->required();
+  cmd->add_option("--out", args->out, "X.glb (LOD0); X_LOD1.glb ... beside it")->required();
+  cmd->add_flag("--flatten", args->flatten, "Leaves as one mesh with COLOR_0, for clients without EXT_mesh_gpu_instancing");
+  return command(cmd, args, app::run_export);
+}
+
 // forest cache ls | verify | clear | build: one subcommand with four of its own.
 Command add_cache(CLI::App& cli) {
   auto a = std::make_shared<app::CacheArgs>();
@@ -302,7 +311,7 @@ Command add_cache(CLI::App& cli) {
 std::vector<Command> add_commands(CLI::App& cli) {
   std::vector<Command> commands;
   for (Command (*add)(CLI::App&) : {add_info, add_generate, add_make_inputs, add_learn, add_preview, add_gallery,
-                                    add_bake, add_report, add_measure, add_render, add_compare, add_walk, add_bench, add_cache})
+                                    add_bake, add_report, add_measure, add_render, add_compare, add_walk, add_bench, add_export, add_cache})
     commands.push_back(add(cli));
   return commands;
 }

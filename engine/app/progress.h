@@ -19,6 +19,7 @@ class ProgressBar {
     std::fflush(stderr);
     shown_ = true;
   }
+  void relabel(std::string label) { label_ = std::move(label); }
   void finish() {
     if (shown_) std::fprintf(stderr, "\n");
     shown_ = false;

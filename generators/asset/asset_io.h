@@ -12,7 +12,16 @@
 namespace forest {
 
 // Deterministic: the same model gives byte-identical output.
-std::vector<uint8_t> encode_glb(const TreeModel& model);
+// How encode_glb writes: the defaults make the engine's asset (what decode_glb reads back);
+// glb_export.h changes them for client files.
+struct GlbOptions {
+  std::string root_name = "tree";
+  std::string scene_name = "forest";
+  nlohmann::json root_extras;   // null: none
+  bool flatten_leaves = false;  // leaves as one mesh with COLOR_0, not EXT_mesh_gpu_instancing
+  bool forest_extras = true;    // extras.forest (meta + bake data)
+};
+std::vector<uint8_t> encode_glb(const TreeModel& model, const GlbOptions& options = {});
 // Writes to a temporary file beside `path`, then renames: never leaves a partial file.
 void save_glb(const TreeModel& model, const std::filesystem::path& path);
 // Missing, truncated or malformed file -> InputError naming the file.

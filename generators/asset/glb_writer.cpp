@@ -202,7 +202,9 @@ struct Writer {
   }
 
   // with_tangents: also TANGENT (mesh_tangents), for a normal-mapped material.
-  int add_mesh(const std::string& name, const Mesh& mesh, int material, bool with_tangents = false) {
+  // colors: also COLOR_0 (linear RGB per vertex).
+  int add_mesh(const std::string& name, const Mesh& mesh, int material, bool with_tangents = false,
+               const std::vector<float>* colors = nullptr) {
     std::vector<float> pos, nrm, uv;
     for (const Vertex& v : mesh.vertices) {
       pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
@@ -219,6 +221,7 @@ struct Writer {
       for (const glm::vec4& t : mesh_tangents(mesh)) tan.insert(tan.end(), {t.x, t.y, t.z, t.w});
       prim.attributes["TANGENT"] = add_floats(tan, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
     }
+    if (colors) prim.attributes["COLOR_0"] = add_floats(*colors, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
     prim.indices = add_indices(mesh.indices);
     prim.material = material;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
@@ -232,16 +235,37 @@ struct Writer {
 
 bool drawable(const Mesh& m) { return !m.vertices.empty() && !m.indices.empty(); }
 
+// Every leaf card placed in model space, one mesh, with each leaf's colour on its vertices:
+// what a client without EXT_mesh_gpu_instancing can draw.
+Mesh flattened_leaves(const TreeModel& tree, std::vector<float>& colors) {
+  Mesh out;
+  out.vertices.reserve(tree.leaves.size() * tree.leaf_card.vertices.size());
+  out.indices.reserve(tree.leaves.size() * tree.leaf_card.indices.size());
+  for (const LeafPlacement& l : tree.leaves) {
+    const glm::quat q = glm::normalize(l.rotation);
+    const uint32_t base = uint32_t(out.vertices.size());
+    for (Vertex v : tree.leaf_card.vertices) {
+      v.position = l.position + q * (v.position * l.scale);
+      v.normal = q * v.normal;
+      out.vertices.push_back(v);
+      colors.insert(colors.end(), {l.color.r, l.color.g, l.color.b});
+    }
+    for (uint32_t i : tree.leaf_card.indices) out.indices.push_back(base + i);
+  }
+  return out;
+}
+
 }  // namespace
 
-std::vector<uint8_t> encode_glb(const TreeModel& tree) {
+std::vector<uint8_t> encode_glb(const TreeModel& tree, const GlbOptions& options) {
   Writer w;
   tinygltf::Model& m = w.model;
   m.asset.version = "2.0";
   m.asset.generator = "forest";
 
   tinygltf::Node root;
-  root.name = "tree";
+  root.name = options.root_name;
+  if (!options.root_extras.is_null()) root.extras = to_value(options.root_extras);
   tinygltf::Node branches;
   branches.name = "branches";
   int bark = -1;
@@ -254,7 +278,22 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   m.nodes.push_back(branches);
   m.nodes[0].children.push_back(1);
 
-  if (!tree.leaves.empty() && drawable(tree.leaf_card)) {
+  if (!tree.leaves.empty() && drawable(tree.leaf_card) && options.flatten_leaves) {
+    tinygltf::Node leaves;
+    leaves.name = "leaves";
+    int texture = tree.leaf_texture.rgba.empty() ? -1 : w.add_texture("leaf", tree.leaf_texture);
+    std::vector<float> colors;
+    Mesh flat = flattened_leaves(tree, colors);
+    // COLOR_0 must stay within 0..1, the per-leaf multipliers reach a little above 1: the
+    // largest moves into the material's factor (colour = factor × texture × COLOR_0).
+    float k = 1.0f;
+    for (float c : colors) k = std::max(k, c);
+    for (float& c : colors) c /= k;
+    glm::vec3 factor = glm::min(tree.leaf_color * k, glm::vec3(1.0f));
+    leaves.mesh = w.add_mesh("leaves", flat, w.add_material("leaf", factor, true, texture), false, &colors);
+    m.nodes.push_back(leaves);
+    m.nodes[0].children.push_back(int(m.nodes.size() - 1));
+  } else if (!tree.leaves.empty() && drawable(tree.leaf_card)) {
     tinygltf::Node leaves;
     leaves.name = "leaves";
     int texture = tree.leaf_texture.rgba.empty() ? -1 : w.add_texture("leaf", tree.leaf_texture);
@@ -326,7 +365,7 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   }
 
   tinygltf::Scene scene;
-  scene.name = "forest";
+  scene.name = options.scene_name;
   scene.nodes.push_back(0);
   m.scenes.push_back(scene);
   m.defaultScene = 0;
@@ -337,16 +376,20 @@ std::vector<uint8_t> encode_glb(const TreeModel& tree) {
   m.buffers.push_back(std::move(buffer));
 
   nlohmann::json forest = tree.meta;
-  if (tree.bake.crown && !(!tree.leaves.empty() && drawable(tree.leaf_card))) {
+  if (!options.forest_extras) {
+    // A client file: no extras.forest (the bake data is the engine's, not a viewer's).
+  } else if (tree.bake.crown && !(!tree.leaves.empty() && drawable(tree.leaf_card))) {
     BakeData bake = tree.bake;  // no leaves node to carry the depths: κ alone would be refused
     bake.crown.reset();
     bake_to_json(bake, forest);
   } else {
     bake_to_json(tree.bake, forest);
   }
-  tinygltf::Value::Object extras;
-  extras["forest"] = to_value(forest);
-  m.extras = tinygltf::Value(std::move(extras));
+  if (options.forest_extras) {
+    tinygltf::Value::Object extras;
+    extras["forest"] = to_value(forest);
+    m.extras = tinygltf::Value(std::move(extras));
+  }
 
   tinygltf::TinyGLTF gltf;
   std::ostringstream out;

@@ -457,3 +457,39 @@ TEST_F(CliTest, RenderAlongCameraPath) {
   EXPECT_EQ(run(base + (dir_ / "e.png").string() + "' --path orbit --frame 1 --time 1").code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "e.png"));
 }
+
+// forest export: a .glb per level, named by --out; bad input exits 2 with one line and
+// leaves nothing behind (the client checks are tests/tools/client_import_test.py).
+TEST_F(CliTest, ExportWritesOneFilePerLevelAndRefusesBadInput) {
+  std::string species = kSourceDir + "/scenes/species/broadleaf.toml";
+  ASSERT_EQ(run("generate --species '" + species + "' --out '" + (dir_ / "t.glb").string() + "'").code, 0);
+  fs::create_directories(dir_ / "out");
+  Result r = run("export '" + (dir_ / "t.glb").string() + "' --out '" + (dir_ / "out/oak.glb").string() + "' --flatten");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // no bar in a pipe
+  std::vector<std::string> files;
+  for (auto& e : fs::directory_iterator(dir_ / "out")) files.push_back(e.path().filename());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 6u);
+  EXPECT_EQ(files[0], "oak.glb");
+  for (size_t i = 1; i < files.size(); ++i) EXPECT_EQ(files[i], "oak_LOD" + std::to_string(i) + ".glb");
+  EXPECT_EQ(lines(r.out), files.size()) << r.out;  // one line per level
+  EXPECT_NE(r.out.find("one mesh, COLOR_0"), std::string::npos) << r.out;
+  fs::remove_all(dir_ / "out");
+
+  const std::string model = "'" + (dir_ / "t.glb").string() + "'";
+  struct Bad {
+    std::string args, needle;
+  };
+  std::ofstream(dir_ / "corrupt.glb") << "glTF but not really";
+  for (const Bad& b : {Bad{"'" + (dir_ / "missing.glb").string() + "' --out '" + (dir_ / "x.glb").string() + "'", "missing.glb"},
+                       Bad{"'" + (dir_ / "corrupt.glb").string() + "' --out '" + (dir_ / "x.glb").string() + "'", "corrupt.glb"},
+                       Bad{model + " --out '" + (dir_ / "x.gltf").string() + "'", "--out"},
+                       Bad{model + " --out '" + (dir_ / "nosuch/x.glb").string() + "'", "--out"}}) {
+    Result e = run("export " + b.args);
+    EXPECT_EQ(e.code, 2) << b.args << "\n" << e.err;
+    EXPECT_EQ(lines(e.err), 1u) << e.err;
+    EXPECT_NE(e.err.find(b.needle), std::string::npos) << e.err;
+    EXPECT_EQ(listing(), (std::vector<std::string>{"corrupt.glb", "t.glb"})) << b.args;
+  }
+}

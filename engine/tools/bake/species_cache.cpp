@@ -90,7 +90,8 @@ fs::path species_cache_file(const SpeciesDesc& species, const std::string& key, 
 }
 
 CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& bake,
-                                   const fs::path& cache_dir, vk::Context* ctx) {
+                                   const fs::path& cache_dir, vk::Context* ctx,
+                                   const std::function<void(double)>& progress) {
   CachedSpecies out;
   SpeciesKey key = species_key(species, bake);
   out.file = species_cache_file(species, key.key, cache_dir);
@@ -119,6 +120,7 @@ CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& b
   settings.views = bake.views;
   settings.resolution = bake.resolution;
   settings.impostor = bake.impostor;
+  if (progress) settings.progress = progress;
   CacheRecord record;
   bake_with(ctx, out.model, settings, record);
   out.generate_seconds = std::chrono::duration<double>(t1 - t0).count();
@@ -144,7 +146,9 @@ CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& b
 SpeciesSource cached_species_source(const SpeciesCacheOptions& options, SpeciesCacheCounts* counts) {
   return [options, counts](const SpeciesDesc& s, const BakeDesc& bake) {
     std::filesystem::path dir = options.dir.empty() ? default_cache_dir() : options.dir;
-    CachedSpecies c = load_or_bake_species(s, bake, dir, options.ctx);
+    std::function<void(double)> progress;
+    if (options.progress) progress = [&](double f) { options.progress(s, f); };
+    CachedSpecies c = load_or_bake_species(s, bake, dir, options.ctx, progress);
     if (counts) (c.hit ? counts->hits : counts->misses)++;
     if (options.log) {
       char line[512];

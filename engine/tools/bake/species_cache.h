@@ -48,8 +48,10 @@ struct CachedSpecies {
 // Loads the baked model of a preset species from the cache, or generates + bakes + stores
 // it. `ctx`: the device that measures the PR tables on a miss (nullptr: a context is
 // created for the bake and destroyed after it).
+// `progress`, when set, hears the bake's fraction done (0..1) on a miss.
 CachedSpecies load_or_bake_species(const SpeciesDesc& species, const BakeDesc& bake,
-                                   const std::filesystem::path& cache_dir, vk::Context* ctx = nullptr);
+                                   const std::filesystem::path& cache_dir, vk::Context* ctx = nullptr,
+                                   const std::function<void(double)>& progress = {});
 
 // The species cache as build_scene()'s source of preset models: how the app layer asks for
 // baked models (baking on first use).
@@ -57,6 +59,8 @@ struct SpeciesCacheOptions {
   std::filesystem::path dir;  // empty: default_cache_dir()
   vk::Context* ctx = nullptr;  // device for bakes on a cache miss (nullptr: own context)
   std::function<void(const std::string&)> log;  // one line per species loaded or baked
+  // A bake's progress on a miss: the species and the fraction done (0..1).
+  std::function<void(const SpeciesDesc&, double)> progress;
 };
 struct SpeciesCacheCounts {
   uint32_t hits = 0, misses = 0;  // species loaded from / added to the cache
