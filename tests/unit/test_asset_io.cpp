@@ -14,31 +14,13 @@
 #include "generators/core/input_error.h"
 #include "generators/mesh/mesh_tangents.h"
 #include "generators/species/registry.h"
+#include "tests/common/small_species.h"
 
 using namespace forest;
+using forest::test::kSmallSpecies;
 namespace fs = std::filesystem;
 
 namespace {
-
-const char* kSmallSpecies = R"(method = "lsystem"
-iterations = 3
-axiom = "X"
-angle = 25.0
-angle_jitter = 5.0
-roll_jitter = 180.0
-step = 0.3
-step_jitter = 0.2
-shoots_per_tip = 2
-leaf_size = 0.2
-bark_color = [0.3, 0.2, 0.1]
-leaf_color = [0.1, 0.4, 0.05]
-[[production]]
-predecessor = "X"
-successor = "F[[X]-X]F[+FX]-X"
-[[production]]
-predecessor = "F"
-successor = "FF"
-)";
 
 TreeModel small_model(uint64_t seed = 7) {
   return generate_from_species_text(kSmallSpecies, "small.toml", {seed});

@@ -17,37 +17,18 @@
 #include "generators/asset/asset_io.h"
 #include "generators/asset/glb_export.h"
 #include "generators/species/registry.h"
+#include "tests/common/small_species.h"
 
 using namespace forest;
 namespace fs = std::filesystem;
 
 namespace {
 
-const char* kSpecies = R"(method = "lsystem"
-iterations = 3
-axiom = "X"
-angle = 25.0
-angle_jitter = 5.0
-roll_jitter = 180.0
-step = 0.3
-step_jitter = 0.2
-shoots_per_tip = 2
-leaf_size = 0.2
-leaf_color_jitter = 0.3
-leaf_shape = "lanceolate"
-bark_color = [0.3, 0.2, 0.1]
-leaf_color = [0.1, 0.4, 0.05]
-[[production]]
-predecessor = "X"
-successor = "F[[X]-X]F[+FX]-X"
-[[production]]
-predecessor = "F"
-successor = "FF"
-)";
-
 // A model as the engine stores it: with a hull and bake data, which must stay out.
 TreeModel model_with_engine_data() {
-  TreeModel m = generate_from_species_text(kSpecies, "small.toml", {7});
+  std::string text = test::kSmallSpecies;  // with leaf colours that vary, and a textured leaf
+  text.insert(text.find("[[production]]"), "leaf_color_jitter = 0.3\nleaf_shape = \"lanceolate\"\n");
+  TreeModel m = generate_from_species_text(text, "small.toml", {7});
   m.hull = m.leaf_card;  // any drawable mesh: the writer stores it as node "hull"
   return m;
 }
