@@ -105,16 +105,24 @@ int main(int argc, char** argv) {
       bake_tree_model(ctx, m, settings);
       const PrTables& t = *m.bake.pr_tables;
       Change q, qi, lambda;
+      std::string per_size;  // mean |Δq_opt| at each size
       for (size_t b = 0; b < ref.sizes.size(); ++b) {
+        Change qb;
         for (size_t i = 0; i < ref.sizes[b].q_opt.size(); ++i) {
           q.add(ref.sizes[b].q_opt[i], t.sizes[b].q_opt[i]);
+          qb.add(ref.sizes[b].q_opt[i], t.sizes[b].q_opt[i]);
           qi.add(ref.sizes[b].q_inverse[i], t.sizes[b].q_inverse[i]);
         }
         for (size_t j = 0; j < ref.sizes[b].lambda_opt.size(); ++j)
           lambda.add(ref.sizes[b].lambda_opt[j], t.sizes[b].lambda_opt[j]);
+        char cell[64];
+        std::snprintf(cell, sizeof cell, " %.0fpx %.4f/%.4f", double(pr_size(ref.size0, uint32_t(b))), qb.mean(), qb.max);
+        per_size += cell;
       }
       std::printf("%8.4f  %11.5f  %12.5f  %15.5f  %16.5f  %17.5f\n", shift, q.max, q.mean(), qi.max, lambda.max,
                   lambda.mean());
+      std::printf("          mean/max |dq_opt| per size:%s\n", per_size.c_str());
+      std::fflush(stdout);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "table_shift_bench: %s\n", e.what());

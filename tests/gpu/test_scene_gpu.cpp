@@ -104,10 +104,14 @@ TEST_F(SceneGpuTest, SpeciesCacheSecondLoadHitsAndRendersIdentically) {
   EXPECT_EQ(first_counts.misses, 1u);
   EXPECT_EQ(first_counts.hits, 0u);
   ASSERT_TRUE(first.models[0].bake.baked()) << "a preset from the cache must be baked";
+  // The entry is the asset and its record (cache_record.h), nothing else: no temporary file.
   std::vector<fs::path> files;
   for (auto& e : fs::directory_iterator(cache)) files.push_back(e.path());
-  ASSERT_EQ(files.size(), 1u) << "exactly one cached asset, no temporary file left";
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) { return a.extension() < b.extension(); });
+  ASSERT_EQ(files.size(), 2u) << "exactly one cached asset and its record, no temporary file left";
   EXPECT_EQ(files[0].extension(), ".glb");
+  EXPECT_EQ(files[1].extension(), ".json");
+  EXPECT_EQ(files[1].stem(), files[0].stem());
   auto written = fs::last_write_time(files[0]);
 
   o.species = cached_species_source({cache, &ctx_, {}}, &second_counts);
