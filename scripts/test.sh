@@ -5,6 +5,9 @@
 # tests in the ordinary build. Ends with ctest's summary line.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache across checkouts: paths below the source folder hash as relative ones, and the
+# working folder is not hashed, so a fresh clone elsewhere reuses what another clone compiled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-true}"
 
 
 scripts/install-deps.sh --test
