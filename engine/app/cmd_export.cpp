@@ -22,19 +22,7 @@ int run_export(const ExportArgs& a) {
   ProgressBar bar("export");
   bar.update(0.0);
   options.progress = [&bar](double f) { bar.update(f); };
-  std::vector<ExportedLod> lods;
-  try {
-    lods = export_model(model, out, options);
-  } catch (...) {
-    // No partial output: the levels written before the failure go too.
-    std::error_code ec;
-    for (uint32_t i = 0; i <= model.branch_lods.size(); ++i) {
-      fs::path f = out;
-      if (i > 0) f.replace_filename(out.stem().string() + "_LOD" + std::to_string(i) + ".glb");
-      fs::remove(f, ec);
-    }
-    throw;
-  }
+  std::vector<ExportedLod> lods = export_model(model, out, options);  // all files, or none
   bar.finish();
   for (const ExportedLod& e : lods)
     std::printf("%s: node %s, %zu branch triangles, %zu leaves (%zu triangles, %s), error %.4f m, screen coverage <= %.4f\n",

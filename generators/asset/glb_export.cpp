@@ -41,34 +41,41 @@ std::vector<ExportedLod> export_model(const TreeModel& model, const fs::path& ou
   client.leaf_color = model.leaf_color;
   std::vector<ExportedLod> lods;
   const uint32_t levels = uint32_t(model.branch_lods.size()) + 1;
-  for (uint32_t i = 0; i < levels; ++i) {
-    ExportedLod e;
-    e.file = lod_file(out, i);
-    e.node = name + "_LOD" + std::to_string(i);
-    e.level = i;
-    e.error = i == 0 ? 0.0f : model.branch_lods[i - 1].error;
-    e.screen_coverage = i == 0 ? 1.0f : coverage_for(e.error, model.bounding_sphere.w, options);
-    client.branches = i == 0 ? model.branches : model.branch_lods[i - 1].mesh;
-    e.branch_triangles = client.branches.indices.size() / 3;
-    e.leaves = client.leaves.size();
-    e.leaf_triangles = e.leaves * (client.leaf_card.indices.size() / 3);
-    GlbOptions g;
-    g.root_name = e.node;
-    g.scene_name = name;
-    g.flatten_leaves = options.flatten;
-    g.forest_extras = false;
-    g.root_extras = {{"lod", {{"level", i},
-                              {"levels", levels},
-                              {"error_meters", e.error},
-                              {"screen_coverage", e.screen_coverage},
-                              {"screen_coverage_at", {{"error_pixels", options.error_pixels},
-                                                      {"screen_height", options.screen_height}}},
-                              {"files", nlohmann::json::array()}}}};
-    for (uint32_t k = 0; k < levels; ++k) g.root_extras["lod"]["files"].push_back(lod_file(out, k).filename().string());
-    std::vector<uint8_t> bytes = encode_glb(client, g);
-    write_file_atomic(e.file, bytes);
-    lods.push_back(std::move(e));
-    if (options.progress) options.progress(double(i + 1) / levels);
+  try {
+    for (uint32_t i = 0; i < levels; ++i) {
+      ExportedLod e;
+      e.file = lod_file(out, i);
+      e.node = name + "_LOD" + std::to_string(i);
+      e.level = i;
+      e.error = i == 0 ? 0.0f : model.branch_lods[i - 1].error;
+      e.screen_coverage = i == 0 ? 1.0f : coverage_for(e.error, model.bounding_sphere.w, options);
+      client.branches = i == 0 ? model.branches : model.branch_lods[i - 1].mesh;
+      e.branch_triangles = client.branches.indices.size() / 3;
+      e.leaves = client.leaves.size();
+      e.leaf_triangles = e.leaves * (client.leaf_card.indices.size() / 3);
+      GlbOptions g;
+      g.root_name = e.node;
+      g.scene_name = name;
+      g.flatten_leaves = options.flatten;
+      g.forest_extras = false;
+      g.root_extras = {{"lod", {{"level", i},
+                                {"levels", levels},
+                                {"error_meters", e.error},
+                                {"screen_coverage", e.screen_coverage},
+                                {"screen_coverage_at", {{"error_pixels", options.error_pixels},
+                                                        {"screen_height", options.screen_height}}},
+                                {"files", nlohmann::json::array()}}}};
+      for (uint32_t k = 0; k < levels; ++k) g.root_extras["lod"]["files"].push_back(lod_file(out, k).filename().string());
+      std::vector<uint8_t> bytes = encode_glb(client, g);
+      write_file_atomic(e.file, bytes);
+      lods.push_back(std::move(e));
+      if (options.progress) options.progress(double(i + 1) / levels);
+    }
+  } catch (...) {
+    // No partial output: the levels written before the failure go too.
+    std::error_code ec;
+    for (const ExportedLod& e : lods) fs::remove(e.file, ec);
+    throw;
   }
   return lods;
 }

@@ -35,7 +35,8 @@ struct ExportedLod {
   size_t branch_triangles = 0, leaves = 0, leaf_triangles = 0;
 };
 
-// Writes the files (atomically, each) and says what is in them. `name`: the node prefix
+// Writes the files (atomically, each; on a failure the ones already written are removed) and
+// says what is in them. `name`: the node prefix
 // (default: the out file's stem).
 std::vector<ExportedLod> export_model(const TreeModel& model, const std::filesystem::path& out,
                                       const ExportOptions& options = {});

@@ -118,7 +118,9 @@ TEST_F(GlbExport, OneFilePerLevelWithOnlyBarkAndLeaves) {
       EXPECT_EQ(error, m.branch_lods[i - 1].error);
       float pixels = error * coverage * 1080.0f / (2.0f * m.bounding_sphere.w);
       EXPECT_LE(pixels, 1.0001f);
-      if (coverage < 1.0f) EXPECT_NEAR(pixels, 1.0f, 1e-4f);  // and not needlessly late
+      if (coverage < 1.0f) {
+        EXPECT_NEAR(pixels, 1.0f, 1e-4f);  // and not needlessly late
+      }
     }
   }
   EXPECT_LT(last_coverage, 0.5f);  // the coarsest level is for small trees
