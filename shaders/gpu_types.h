@@ -52,9 +52,9 @@ using mat4 = glm::mat4;
 #define PRESENT_BINDING_RENDERED 0  // sampler2D: the renderer's finished frame
 
 // Specialization-constant ids: layout(constant_id = SPEC_*) in GLSL, VkSpecializationMapEntry
-// ids in C++. Each shader has its own id space; every constant is a 32-bit bool.
+// ids in C++. Each shader has its own id space; every constant is 32 bits (a bool unless named).
 #define SPEC_LEAF 0               // tree.frag: drawing leaf cards (texture alpha, translucency)
-#define SPEC_ALPHA_TO_COVERAGE 1  // tree.frag: the pipeline turns the leaf alpha into coverage
+#define SPEC_COVERAGE_SAMPLES 1   // leaf_msaa.frag (uint): the pipeline's samples, which the leaf alpha covers
 #define SPEC_COVERAGE_LATTICES 2  // tree.frag: bake coverage at every PR size in one render (PR_SIZES)
 #define SPEC_MINMAX_SAMPLER 0     // depth_pyramid.comp: levels >= 1 reduce with a MIN sampler
 

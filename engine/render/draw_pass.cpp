@@ -39,8 +39,11 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
   leaves.vertex = "leaf_vert";
   if (!wire) {
     leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
-    leaves.alpha_to_coverage = samples > VK_SAMPLE_COUNT_1_BIT;
-    leaves.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_ALPHA_TO_COVERAGE, leaves.alpha_to_coverage ? 1u : 0u}};
+    leaves.fragment_specialization = {{SPEC_LEAF, 1u}};
+    if (samples > VK_SAMPLE_COUNT_1_BIT) {  // the leaf alpha becomes a sample mask (leaf_msaa.frag)
+      leaves.fragment = "leaf_msaa_frag";
+      leaves.fragment_specialization.push_back({SPEC_COVERAGE_SAMPLES, uint32_t(samples)});
+    }
     // The leaf's (sharpened) alpha is coverage, not opacity: written to the attachment it
     // made the resolved frame translucent at every leaf edge, and a PNG viewer showed its page
     // background (white) through the crowns. The sky underneath already wrote alpha 1.
@@ -141,7 +144,7 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
     d.depth_test = false;
     d.depth_write = false;
     d.blend_max = true;
-    d.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_ALPHA_TO_COVERAGE, 0u}, {SPEC_COVERAGE_LATTICES, 1u}};
+    d.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_COVERAGE_LATTICES, 1u}};
     p.lattice_leaves_instanced = vk::create_graphics_pipeline(ctx, layout, d);
     d.vertex = "leaf_pulled_vert";
     d.vertex_input = false;

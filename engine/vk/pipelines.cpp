@@ -100,7 +100,6 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   raster.depthBiasSlopeFactor = desc.depth_bias_slope;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = desc.samples;
-  multisample.alphaToCoverageEnable = desc.alpha_to_coverage && desc.samples > VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = desc.depth_test;
   depth.depthWriteEnable = desc.depth_write;

@@ -34,9 +34,8 @@ struct GraphicsPipelineDesc {
   VkFormat color_format = VK_FORMAT_UNDEFINED;
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-  bool alpha_to_coverage = false;
-  // false: the pipeline leaves the color attachment's alpha as it is (its fragment alpha only
-  // drives alpha-to-coverage, which the write mask does not affect).
+  // false: the pipeline leaves the color attachment's alpha as it is (the leaves' fragment alpha
+  // is coverage, not opacity).
   bool write_alpha = true;
   bool blend_max = false;  // colour = max(fragment, attachment): unions of coverage masks
   VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;  // LINE needs Context::fill_mode_non_solid

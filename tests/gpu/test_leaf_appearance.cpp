@@ -1,6 +1,6 @@
 // Leaves look the same near and far: a wall of needle cards (the conifer presets' texture)
 // rendered at 8x the texel footprint (as at 8x the distance) keeps its coverage and color,
-// with and without alpha-to-coverage, and the rendered frame stays opaque.
+// with and without MSAA (alpha as a sample mask), and the rendered frame stays opaque.
 #include <gtest/gtest.h>
 
 #include <cmath>

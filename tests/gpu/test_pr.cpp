@@ -122,11 +122,16 @@ TEST_F(PrTest, EachLatticeCountsWhatARenderAtItsSizeCounts) {
       // to the sub-pixel grid of each resolution). Read at the fine mip instead, the lattices
       // of sub-pixel leaves measured Q 0.043 too high at 16 px.
       const double slack = 0.005 * pixels + 1.0;
+      std::printf("%3u px, job %zu: lattice tp %u fp %u fn %u Q %.4f, render tp %u fp %u fn %u Q %.4f\n", low, k,
+                  l.tp, l.fp, l.fn, l.quality(), real.tp, real.fp, real.fn, real.quality());
       EXPECT_NEAR(double(l.tp + l.fn), pixels, slack) << "full-detail coverage";
       EXPECT_NEAR(double(l.tp), double(real.tp), slack);
       EXPECT_NEAR(double(l.fp), double(real.fp), slack);
       EXPECT_NEAR(double(l.fn), double(real.fn), slack);
-      if (pixels >= 40.0) EXPECT_NEAR(l.quality(), real.quality(), 0.005);
+      // Q within 0.005, or within what one pixel moves it by (about 1.5 / pixels): at 16 px the
+      // tree covers 46 pixels, and on NVIDIA one pixel that the real render covers and the
+      // lattice does not moved Q from 0.810 to 0.841 (lavapipe: the same pixels).
+      if (pixels >= 40.0) EXPECT_NEAR(l.quality(), real.quality(), std::max(0.005, 1.5 / pixels));
     }
   }
 }
