@@ -1,8 +1,9 @@
 // Bark and leaves (tree.frag; leaf_msaa.frag for leaves with MSAA): two-sided diffuse with leaf
 // translucency, fog. Leaves (specialization LEAF) take color and coverage from the model's leaf
 // texture, read at a mip level of our own (leaf_lod), alpha-tested at 0.5; with MSAA (LEAF_MSAA)
-// the test is made at every sample (leaf_sample_mask); their back faces are the paler undersides. Bark takes its colour from the bark albedo array and perturbs
-// its normal by the bark normal map, in a tangent frame from screen-space derivatives.
+// the test is made at every sample (leaf_sample_mask); their back faces are the paler
+// undersides. Bark takes its colour from the bark albedo array and perturbs its normal by the
+// bark normal map, in a tangent frame from screen-space derivatives.
 #include "common.glsl"
 #include "lighting.glsl"
 #include "impostor_math.h"
@@ -65,7 +66,9 @@ float leaf_lod() {
 // did neither the same way everywhere: a far needle wall (4 samples, 4 px cards) kept 0.28 of its
 // coverage on NVIDIA against 0.38 near, and 0.38 on lavapipe, whose mapping of alpha to samples
 // differs (gpu.LeafAppearance.NeedleCoverageAndColorKeptAtDistance). False where no sample is
-// covered. Other sample counts than 2, 4 and 8 test the pixel centre for every sample.
+// covered. Other sample counts than 2, 4 and 8 test the pixel centre for every sample; a device
+// without standardSampleLocations places its samples elsewhere, and the mask then tests points
+// near, not at, its samples.
 const vec2 kSamples2[2] = vec2[2](vec2(0.75, 0.75), vec2(0.25, 0.25));
 const vec2 kSamples4[4] = vec2[4](vec2(0.375, 0.125), vec2(0.875, 0.375), vec2(0.125, 0.625), vec2(0.625, 0.875));
 const vec2 kSamples8[8] = vec2[8](vec2(0.5625, 0.3125), vec2(0.4375, 0.6875), vec2(0.8125, 0.5625), vec2(0.3125, 0.1875),

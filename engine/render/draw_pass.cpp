@@ -44,9 +44,9 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
       leaves.fragment = "leaf_msaa_frag";
       leaves.fragment_specialization.push_back({SPEC_COVERAGE_SAMPLES, uint32_t(samples)});
     }
-    // The leaf's (sharpened) alpha is coverage, not opacity: written to the attachment it
-    // made the resolved frame translucent at every leaf edge, and a PNG viewer showed its page
-    // background (white) through the crowns. The sky underneath already wrote alpha 1.
+    // A leaf's coverage is never opacity: when alpha-to-coverage's alpha was written to the
+    // attachment it made the resolved frame translucent at every leaf edge, and a PNG viewer
+    // showed its page background (white) through the crowns. The sky underneath writes alpha 1.
     leaves.write_alpha = false;
   }
   p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
