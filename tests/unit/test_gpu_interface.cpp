@@ -178,11 +178,9 @@ struct SpecDecl {
   uint32_t id;
 };
 const SpecDecl kSpecConstants[] = {
-    {"tree_frag", "LEAF", SPEC_LEAF},
-    {"tree_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
-    {"leaf_msaa_frag", "LEAF", SPEC_LEAF},
+    {"tree_frag", "LEAF", SPEC_LEAF}, {"tree_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
+    {"leaf_msaa_frag", "LEAF", SPEC_LEAF}, {"leaf_msaa_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
     {"leaf_msaa_frag", "COVERAGE_SAMPLES", SPEC_COVERAGE_SAMPLES},
-    {"leaf_msaa_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
     {"depth_pyramid_comp", "MINMAX_SAMPLER", SPEC_MINMAX_SAMPLER},
 };
 
