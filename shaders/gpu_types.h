@@ -123,10 +123,16 @@ using mat4 = glm::mat4;
 #define TABLE_Q_OPT S_SAMPLES             // offset of q_opt in a block
 #define TABLE_LAMBDA_OPT (2 * S_SAMPLES)  // offset of λ_opt in a block
 #define TABLE_FLOATS (PR_SIZES * TABLE_BLOCK)
-// Bake coverage renders (SPEC_COVERAGE_LATTICES): size 0 in the red channel at every pixel;
-// size b >= 1, 2^b times smaller, in the green channel on the lattice of pixels (x, y) with
-// x ≡ y ≡ prune::lattice_offset(b) (mod 2^b): a render at 2^-b the resolution, shifted by half a
-// pixel of the full one. The lattices of different b share no pixel.
+// Bake coverage renders (SPEC_COVERAGE_LATTICES): size 0 in the red channel, and size b >= 1,
+// 2^b times smaller, with the leaf texture read b mip levels coarser, in the channel
+// prune::lattice_size assigns at that pixel's parity (size 5 at every pixel, sizes 1–4 at half
+// of them). Each pixel of the render is the sample point of a render 2^b times smaller at one
+// of its 4^b sub-pixel phases, so a size's count is summed over (half of or all) its phases:
+// what trees at random sub-pixel positions see on average, not one phase's luck (one phase of
+// 8 × 8 pixels is a few dozen pixels).
+#if PR_SIZES != 6
+#error "prune::lattice_size is written for six PR sizes"
+#endif
 
 #define MAX_BRANCH_LODS 8      // LOD0 + up to 7 coarser levels per model (structural_lod.h)
 #define LEAF_TEXTURE_SIZE 256  // every model's leaf texture is one layer of a 2D array

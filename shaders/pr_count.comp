@@ -3,7 +3,7 @@
 // Precision/Recall pixel counts (Neubert 2012 §7.2.2): reference coverage (full detail) vs test
 // coverage (pruned), both RGBA8 frames copied into buffers; covered = channel > 127. Frames
 // of the bake's lattice pipeline (push.lattices) are counted per PR size: size 0 from the red
-// channel of every pixel, size b >= 1 from the green channel of its lattice's pixels.
+// channel of every pixel, size b >= 1 from the channels prune::lattice_size gives it.
 #include "gpu_types.h"
 #include "prune_math.h"
 
@@ -32,7 +32,6 @@ void main() {
   uint last = min(first + PR_PIXELS_PER_INVOCATION, push.pixel_count);
   uint width = max(push.width, 1u);
   uint x = first % width, y = first / width;
-  uint row_lattice = lattice_of_column(y);
   for (uint i = first; i < last; ++i) {
     uint ref = reference[push.reference_offset + i], tst = test[i];
     uint branch = push.branch_offset != PR_NO_MASK ? reference[push.branch_offset + i] : 0u;
@@ -40,17 +39,18 @@ void main() {
     tp[0] += relevant && retrieved ? 1u : 0u;
     fp[0] += !relevant && retrieved ? 1u : 0u;
     fn[0] += relevant && !retrieved ? 1u : 0u;
-    if (push.lattices != 0u && row_lattice < PR_SIZES && lattice_of_column(x) == row_lattice) {
-      relevant = covered(ref, 1u);
-      retrieved = covered(tst, 1u) || covered(branch, 1u);
-      tp[row_lattice] += relevant && retrieved ? 1u : 0u;
-      fp[row_lattice] += !relevant && retrieved ? 1u : 0u;
-      fn[row_lattice] += relevant && !retrieved ? 1u : 0u;
+    if (push.lattices != 0u) {
+      uint parity = pixel_parity(x, y);
+      for (uint c = 1u; c < 4u; ++c) {
+        uint b = lattice_size(c, parity);
+        relevant = covered(ref, c);
+        retrieved = covered(tst, c) || covered(branch, c);
+        tp[b] += relevant && retrieved ? 1u : 0u;
+        fp[b] += !relevant && retrieved ? 1u : 0u;
+        fn[b] += relevant && !retrieved ? 1u : 0u;
+      }
     }
-    if (++x == width) {
-      x = 0u;
-      row_lattice = lattice_of_column(++y);
-    }
+    if (++x == width) x = 0u, ++y;
   }
   for (uint s = 0; s < PR_SIZES; ++s) {
     if (tp[s] != 0u) atomicAdd(group_tp[s], tp[s]);

@@ -54,20 +54,12 @@ PRUNE_INLINE float size_table_position(float p, float size0) {
   return clamp(log2(max(size0, 1e-6f) / max(p, 1e-6f)), 0.0f, float(PR_SIZES - 1));
 }
 
-// Bake coverage lattices (gpu_types.h, SPEC_COVERAGE_LATTICES): pixel column x belongs to the
-// lattice of size b = 1 + (trailing zero bits of x + 1), i.e. x ≡ 2^(b−1) − 1 (mod 2^b), and
-// b = 1 takes the even columns. A pixel is on lattice b when its row is too; 0: on none below
-// size 0.
-PRUNE_INLINE uint lattice_of_column(uint x) {
-  uint b = 1u;
-  for (uint v = x + 1u; (v & 1u) == 0u && b < 31u; v >>= 1u) b += 1u;
-  return b;
-}
-PRUNE_INLINE uint lattice_of_pixel(uint x, uint y) {
-  uint b = lattice_of_column(x);
-  return b == lattice_of_column(y) && b < uint(PR_SIZES) ? b : 0u;
-}
-PRUNE_INLINE uint lattice_offset(uint b) { return b <= 1u ? 0u : (1u << (b - 1u)) - 1u; }
+// Bake coverage channels (gpu_types.h, SPEC_COVERAGE_LATTICES): the PR size b >= 1 that
+// colour channel c (1 green, 2 blue, 3 alpha) holds at a pixel of parity (x + y) & 1. Red holds
+// size 0 at every pixel; the 8 px size (5), the noisiest, is in alpha at every pixel; sizes 1
+// and 2 at the even pixels, 3 and 4 at the odd ones. Written for PR_SIZES = 6.
+PRUNE_INLINE uint lattice_size(uint channel, uint parity) { return channel == 3u ? 5u : channel + 2u * parity; }
+PRUNE_INLINE uint pixel_parity(uint x, uint y) { return (x + y) & 1u; }
 
 // Leaves drawn out of n at detail λ: k = ⌈λ·n⌉, at least one while λ > 0.
 PRUNE_INLINE uint leaf_prefix(float lambda, uint n) {

@@ -93,17 +93,20 @@ bool leaf_sample_mask(float lod) {
 #endif
 
 // Bake coverage at every PR size in one render (gpu_types.h): red = covered at this
-// resolution, green = covered at the size of this pixel's lattice, 2^b times coarser, where
-// the texture would be read 2^b times coarser too (b mip levels up). Blended by MAX without
-// a depth test, so the attachment holds the union of all leaves at every size; branches
-// (another pipeline) write white. The cutoff is alpha >= 0.5 as in main().
+// resolution; green, blue and alpha = covered at the sizes prune::lattice_size gives them at
+// this pixel's parity, 2^b times coarser, where the texture would be read 2^b times coarser
+// too (b mip levels up). Blended by MAX without a depth test, so the attachment holds the
+// union of all leaves at every size; branches (another pipeline) write white. The cutoff is
+// alpha >= 0.5 as in main().
 void lattice_coverage() {
   float lod = leaf_lod();
-  float covered = textureLod(leaf_textures, in_uv_layer, lod).a >= 0.5 ? 1.0 : 0.0;
-  uint b = lattice_of_pixel(uint(gl_FragCoord.x), uint(gl_FragCoord.y));
-  float coarse = b > 0u && textureLod(leaf_textures, in_uv_layer, lod + float(b)).a >= 0.5 ? 1.0 : 0.0;
-  if (covered == 0.0 && coarse == 0.0) discard;
-  out_color = vec4(covered, coarse, 0.0, 1.0);
+  uint parity = pixel_parity(uint(gl_FragCoord.x), uint(gl_FragCoord.y));
+  vec4 covered;
+  covered.r = textureLod(leaf_textures, in_uv_layer, lod).a >= 0.5 ? 1.0 : 0.0;
+  for (uint c = 1u; c < 4u; ++c)
+    covered[c] = textureLod(leaf_textures, in_uv_layer, lod + float(lattice_size(c, parity))).a >= 0.5 ? 1.0 : 0.0;
+  if (covered == vec4(0.0)) discard;
+  out_color = covered;
 }
 
 // Impostor bake renders (impostor_bake.h): the view's unlit albedo (leaves times their sky

@@ -95,7 +95,8 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& t, const DrawList
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   // With a background the sky covers every pixel.
   color.loadOp = list.background ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // opaque: leaves write no alpha
+  // Opaque: leaves write no alpha; bake coverage keeps a PR size in alpha (tree_frag.glsl).
+  color.clearValue.color = {{0.0f, 0.0f, 0.0f, list.lattices ? 0.0f : 1.0f}};
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   if (t.color_msaa.image) {  // render multisampled, resolve (average) into the single-sample image
     color.imageView = t.color_msaa.view;

@@ -141,7 +141,10 @@ TEST_F(ImpostorTest, ImpostorsCastShadows) {
   EXPECT_GT(st.shadow_impostors[0] + st.shadow_impostors[1] + st.shadow_impostors[2], 0u);
   EXPECT_GT(dark_pixels(mesh), 200u);
   EXPECT_GT(double(dark_pixels(impostor)), 0.6 * double(dark_pixels(mesh)));
-  EXPECT_LT(double(dark_pixels(impostor)), 1.6 * double(dark_pixels(mesh)));
+  // The impostor's shadow is fuller than the mesh's: 1.53x with its views drawn at full
+  // detail, 1.64x pruned to Q 0.98 by phase-averaged tables (stop 33). It was 1.10x only while
+  // one-phase tables pruned those views further than Q 0.98.
+  EXPECT_LT(double(dark_pixels(impostor)), 1.8 * double(dark_pixels(mesh)));
 }
 
 // The mesh-to-impostor switch, measured like branch LOD popping (engine/tools/report/popping.h,

@@ -162,9 +162,11 @@ TEST_F(SceneGpuTest, OptMatchesCookQualityWithFewerLeaves) {
 }
 
 TEST_F(SceneGpuTest, OptKeepsCooksQualityAtEveryResolution) {
-  // The run time looks λ_opt up by each tree's projected size as well as d (issue 20): the
-  // same view at 4 × the pixels prunes less where the trees are larger on screen, and opt
-  // keeps Cook's quality at both within the one "equal quality" tolerance, −0.002.
+  // The run time looks λ_opt up by each tree's projected size as well as d (issue 20), and opt
+  // keeps Cook's quality at the same view with 16 × the pixels within the one "equal quality"
+  // tolerance, −0.002. (It once also pruned less at the larger size; with each size counted
+  // over its sub-pixel phases, tables agree across sizes within a few thousandths in Q (fig2_1:
+  // 0.005), and the two frames draw nearly the same leaves.)
   Scene s = baked_grove(ctx_, 4, 256);
   uint32_t opt_leaves[2] = {0, 0};
   const uint32_t widths[2] = {160, 640};
@@ -184,7 +186,6 @@ TEST_F(SceneGpuTest, OptKeepsCooksQualityAtEveryResolution) {
     EXPECT_GE(q_opt.quality(), q_cook.quality() - kEqualQualityTolerance);
     EXPECT_LT(opt_leaves[k], leaves_cook) << "opt should still need less geometry than Cook";
   }
-  EXPECT_GT(opt_leaves[1], opt_leaves[0]) << "larger on screen, the trees should keep more leaves";
 }
 
 TEST_F(SceneGpuTest, CpuFrameTimeIndependentOfInstanceCount) {

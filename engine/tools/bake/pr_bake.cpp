@@ -1,6 +1,7 @@
 #include "engine/tools/bake/pr_bake.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -127,9 +128,13 @@ struct PrMeter {
   Renderer& renderer;
   const PrBakeOptions& options;
   std::map<Point, PrSizes> sums;
+  std::map<Point, std::array<PrSizes, 2>> folds;  // the same sums over each half of the views
   PrBakeStats stats;
   size_t expected = 0, measured = 0;  // points, for the progress fraction
 };
+
+// Views [0, views/2) and the rest: both halves see both elevations (pr_views alternates them).
+uint32_t view_fold(uint32_t view, uint32_t views) { return views > 1 && view >= views / 2 ? 1 : 0; }
 
 // Measures the points not measured yet (duplicates once): all views of all points in one
 // submit (Renderer::compare_coverage).
@@ -147,7 +152,8 @@ void measure(PrMeter& m, std::vector<Point> points) {
   ++m.stats.submits;
   for (size_t i = 0; i < jobs.size(); ++i) {
     PrSizes& sum = m.sums[{jobs[i].lambda, jobs[i].scale}];
-    for (uint32_t b = 0; b < PR_SIZES; ++b) sum[b] += r[i][b];
+    PrSizes& fold = m.folds[{jobs[i].lambda, jobs[i].scale}][view_fold(jobs[i].view, m.options.views)];
+    for (uint32_t b = 0; b < PR_SIZES; ++b) sum[b] += r[i][b], fold[b] += r[i][b];
   }
   m.stats.renders += uint32_t(points.size()) * m.options.views;
   m.measured += points.size();
@@ -233,21 +239,38 @@ void run_scale_searches(PrMeter& m, SamplePlan& plan) {
 }
 
 // s_opt(λ) (ties to the smaller s), q_opt and q_inverse at size b from the measured points.
-void fill_scale_tables(PrSizeTables& t, const std::map<Point, PrSizes>& sums, const std::vector<float>& lambdas,
-                       uint32_t b) {
+// q_opt is not the best pooled Q itself: the maximum over a dozen s values of a Q that one
+// pixel moves by 0.005–0.03 at small sizes is biased upward (the winner's curse), and λ_opt
+// came out too small by that bias (bench_grove: opt 0.007 under Cook). So each half of the
+// views chooses its s and is measured at the other half's choice (two-fold cross-fitting);
+// where that held-out Q does not beat Cook's s = 1/λ, s_opt is Cook's.
+void fill_scale_tables(PrSizeTables& t, const PrMeter& m, const std::vector<float>& lambdas, uint32_t b) {
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
+  const bool cross_fit = m.options.views > 1;
   for (uint32_t i = 1; i < S_SAMPLES; ++i) {
     float l = lambdas[i];
-    double best = -2.0;
-    for (auto& [key, pr] : sums) {
+    struct Best {
+      double q = -2.0;
+      float s = 0.0f;
+      void offer(double qs, float ss) {
+        if (qs > q || (qs == q && ss < s)) q = qs, s = ss;
+      }
+    } pooled, half[2];
+    for (auto& [key, pr] : m.sums) {
       if (key.first != l) continue;
-      double q = pr[b].quality();
-      if (q > best || (q == best && key.second < t.s_opt[i])) best = q, t.s_opt[i] = key.second;
-      if (key.second == 1.0f / l) t.q_inverse[i] = float(q);
+      pooled.offer(pr[b].quality(), key.second);
+      for (int f = 0; f < 2; ++f) half[f].offer(m.folds.at(key)[size_t(f)][b].quality(), key.second);
+      if (key.second == 1.0f / l) t.q_inverse[i] = float(pr[b].quality());
     }
-    t.q_opt[i] = float(best);
+    t.s_opt[i] = pooled.s;
+    t.q_opt[i] = float(pooled.q);
+    if (!cross_fit) continue;
+    PrResult held = m.folds.at({l, half[0].s})[1][b];
+    held += m.folds.at({l, half[1].s})[0][b];
+    t.q_opt[i] = float(held.quality());
+    if (t.q_opt[i] <= t.q_inverse[i]) t.s_opt[i] = 1.0f / l, t.q_opt[i] = t.q_inverse[i];
   }
   // s must not pop as λ changes: non-increasing in λ, exactly 1 at full detail, and λ = 0
   // (nothing drawn) borrows its neighbour's value.
@@ -261,13 +284,14 @@ void fill_scale_tables(PrSizeTables& t, const std::map<Point, PrSizes>& sums, co
 // λ_opt(d) at size b: the smallest λ whose optimal quality matches Cook's at λ_Cook(d)
 // (Neubert 2012 §7.2.5), both seen at that size. Where λ_Cook(d) is below the first measured
 // λ (1/20), q_opt there would be a straight line to Q = 0 at λ = 0, a guess: λ_opt = λ_Cook, and
-// the run time's s goes over to Cook's 1/λ (tree_detail.glsl), so opt is Cook there.
+// the run time's s goes over to Cook's 1/λ (tree_detail.glsl), so opt is Cook there. For the
+// same reason λ_opt does not go below 1/20 while λ_Cook(d) is above it.
 void fill_lambda_opt(PrSizeTables& t, std::map<Point, PrSizes>& sums, const std::vector<float>& cook, uint32_t b) {
   t.lambda_opt.resize(D_SAMPLES);
   for (uint32_t j = 0; j < D_SAMPLES; ++j) {
     float lc = cook[j];
     t.lambda_opt[j] = lc < pr_lambda(1) ? std::min(lc, j > 0 ? t.lambda_opt[j - 1] : lc)
-                                        : smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}][b].quality(), lc);
+                                        : std::max(pr_lambda(1), smallest_lambda_reaching(t.q_opt, sums[{lc, 1.0f / lc}][b].quality(), lc));
   }
   t.lambda_opt[0] = 1.0f;
   t.lambda_opt = non_increasing(t.lambda_opt);
@@ -326,7 +350,7 @@ PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const 
   t.size0 = float(options.size0);
   t.sizes.resize(PR_SIZES);
   for (uint32_t b = 0; b < PR_SIZES; ++b) {
-    fill_scale_tables(t.sizes[b], meter.sums, plan.lambdas, b);
+    fill_scale_tables(t.sizes[b], meter, plan.lambdas, b);
     fill_lambda_opt(t.sizes[b], meter.sums, plan.cook, b);
   }
   if (options.progress) options.progress(1.0);
