@@ -109,6 +109,21 @@ void lattice_coverage() {
   out_color = covered;
 }
 
+// Bark in bake coverage: drawn once per PR size b = frame.lod.z, with the branch LOD the cull
+// pass picks for a render at that size (FrameData.lod.x scaled by 2^-b), into the channels that
+// hold size b at this pixel. A frame draws its bark at the LOD of its size, so the tables must
+// see that bark: with LOD0 bark in the bake's masks, opt lost 0.006 in mean Q against Cook
+// along bench_grove's fly-in, whose frames draw coarser bark; drawn at LOD0 there too, it
+// gained 0.007.
+void branch_lattice_coverage() {
+  uint b = uint(frame.lod.z + 0.5);
+  uint parity = pixel_parity(uint(gl_FragCoord.x), uint(gl_FragCoord.y));
+  vec4 covered = vec4(b == 0u ? 1.0 : 0.0, 0.0, 0.0, 0.0);
+  for (uint c = 1u; c < 4u; ++c) covered[c] = lattice_size(c, parity) == b ? 1.0 : 0.0;
+  if (covered == vec4(0.0)) discard;
+  out_color = covered;
+}
+
 // Impostor bake renders (impostor_bake.h): the view's unlit albedo (leaves times their sky
 // visibility, which no later light knows), or the model-space normal and the height toward the
 // view camera (the bake's instance has no rotation and scale 1). The attachment is sRGB: the
@@ -130,8 +145,9 @@ bool impostor_bake_output(vec3 albedo, vec3 n) {
 void main() {
   // Cross-fade with the tree's impostor (cull.comp): this mesh keeps the pixels below its fade.
   if (in_fade < 1.0 && dither_threshold(gl_FragCoord.xy) >= in_fade) discard;
-  if (LEAF && COVERAGE_LATTICES) {
-    lattice_coverage();
+  if (COVERAGE_LATTICES) {
+    if (LEAF) lattice_coverage();
+    else branch_lattice_coverage();
     return;
   }
   vec3 albedo = in_albedo;

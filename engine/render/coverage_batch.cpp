@@ -32,15 +32,25 @@ void Renderer::reserve_coverage(uint32_t reference_frames, uint32_t results) {
 
 void Renderer::record_coverage_render(VkCommandBuffer cmd, const FrameSlot& slot, const gpu::FrameData& frame,
                                       bool branches, bool leaves) {
-  vkCmdUpdateBuffer(cmd, slot.frame.buffer, 0, sizeof(frame), &frame);
-  full_barrier(cmd);
   DrawList list;
   list.background = false;
-  list.branches = branches;
-  list.leaves = leaves;
   list.lattices = true;
   list.instanced_leaves = (frame.view_flags & VIEW_LEAF_INSTANCED) != 0;
-  record_scene(cmd, slot, list, false, false);
+  // The bark once per PR size, each pass at the branch LOD the cull pass picks for a render at
+  // that size (pixels per metre 2^b times fewer), then the leaves, all into one attachment.
+  const uint32_t bark_passes = branches ? PR_SIZES : 0;
+  for (uint32_t pass = 0; pass < bark_passes + (leaves ? 1 : 0); ++pass) {
+    const bool bark = pass < bark_passes;
+    gpu::FrameData f = frame;
+    if (bark) f.lod.x = frame.lod.x / float(1u << pass), f.lod.z = float(pass);
+    vkCmdUpdateBuffer(cmd, slot.frame.buffer, 0, sizeof(f), &f);
+    full_barrier(cmd);
+    list.branches = bark;
+    list.leaves = !bark;
+    list.keep_color = pass > 0;
+    record_scene(cmd, slot, list, false, false);
+    full_barrier(cmd);
+  }
   vk::image_barrier(cmd, targets_.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,

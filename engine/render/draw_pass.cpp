@@ -64,8 +64,9 @@ void destroy_pipelines(vk::Context& ctx, DrawPipelines& p) {
 
 // The targets become attachments; also after the previous frame's pyramid reads of the
 // depth (compute) and the copies out of the colour image (transfer).
-void begin_targets(VkCommandBuffer cmd, const RenderTargets& t) {
-  vk::image_barrier(cmd, t.color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+void begin_targets(VkCommandBuffer cmd, const RenderTargets& t, bool keep_color) {
+  vk::image_barrier(cmd, t.color.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                    keep_color ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -94,7 +95,9 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& t, const DrawList
   color.imageView = t.color.view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   // With a background the sky covers every pixel.
-  color.loadOp = list.background ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.loadOp = list.background   ? VK_ATTACHMENT_LOAD_OP_DONT_CARE
+                 : list.keep_color ? VK_ATTACHMENT_LOAD_OP_LOAD
+                                   : VK_ATTACHMENT_LOAD_OP_CLEAR;
   // Opaque: leaves write no alpha; bake coverage keeps a PR size in alpha (tree_frag.glsl).
   color.clearValue.color = {{0.0f, 0.0f, 0.0f, list.lattices ? 0.0f : 1.0f}};
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -150,6 +153,11 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
     d.vertex = "leaf_pulled_vert";
     d.vertex_input = false;
     p.lattice_leaves = vk::create_graphics_pipeline(ctx, layout, d);
+    d.vertex = "branch_vert";
+    d.vertex_input = true;
+    d.cull = VK_CULL_MODE_BACK_BIT;
+    d.fragment_specialization = {{SPEC_COVERAGE_LATTICES, 1u}};
+    p.lattice_branches = vk::create_graphics_pipeline(ctx, layout, d);
   }
   if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true);
   return p;
@@ -160,14 +168,15 @@ void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
   destroy_pipelines(ctx, p.wire);
   vkDestroyPipeline(ctx.device, p.lattice_leaves, nullptr);
   vkDestroyPipeline(ctx.device, p.lattice_leaves_instanced, nullptr);
-  p.lattice_leaves = p.lattice_leaves_instanced = VK_NULL_HANDLE;
+  vkDestroyPipeline(ctx.device, p.lattice_branches, nullptr);
+  p.lattice_leaves = p.lattice_leaves_instanced = p.lattice_branches = VK_NULL_HANDLE;
 }
 
 void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
                       const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
                       const RenderTargets& targets, const DrawList& list) {
   const DrawPipelines& p = list.wireframe ? pass.wire : pass.fill;
-  begin_targets(cmd, targets);
+  begin_targets(cmd, targets, list.keep_color);
   begin_rendering(cmd, targets, list);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
   VkDeviceSize zero = 0;
@@ -186,7 +195,7 @@ void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayou
     vkCmdDrawIndexed(cmd, scene.terrain_index_count, 1, 0, 0, 0);
   }
   if (n > 0 && list.branches) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.branches);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, list.lattices ? pass.lattice_branches : p.branches);
     vkCmdDrawIndexedIndirectCount(cmd, cull.commands.buffer, 0, cull.counts.buffer,
                                   offsetof(gpu::DrawCounts, branch_draws), n, stride);
   }

@@ -24,6 +24,9 @@ struct DrawPass {
   // Bake coverage of the leaves at every PR size in one render (tree.frag, SPEC_COVERAGE_LATTICES):
   // no depth test, MAX blending. Single-sampled renderers only.
   VkPipeline lattice_leaves = VK_NULL_HANDLE, lattice_leaves_instanced = VK_NULL_HANDLE;
+  // The bark of bake coverage, drawn once per PR size with that size's branch LOD, into the
+  // channels that hold the size (tree_frag.glsl branch_lattice_coverage).
+  VkPipeline lattice_branches = VK_NULL_HANDLE;
 };
 
 inline constexpr Binding kDrawBindings[] = {
@@ -46,7 +49,9 @@ struct DrawList {
   bool keep_depth = false;  // store the depth (or its resolve) for the depth pyramid
   bool shadows = false;     // the shadow pass runs first (shadow_pass.h); never in coverage frames
   bool receiver_mask = false;  // shadows: the receiver mask is made first (FrameData.receiver_mask)
-  bool lattices = false;    // coverage frames of the bake: leaves through DrawPass::lattice_leaves
+  bool lattices = false;    // coverage frames of the bake: leaves through DrawPass::lattice_leaves,
+                            // branches through lattice_branches at the size FrameData.lod.z
+  bool keep_color = false;  // load the colour attachment (a frame drawn in several passes), not clear it
   bool instanced_leaves = false;  // the cull pass wrote instanced leaf draws (VIEW_LEAF_INSTANCED)
   bool impostors = false;         // the cull pass may have listed impostors (impostor_pass.h)
 };

@@ -330,6 +330,9 @@ CameraDesc pr_view_camera(glm::vec4 sphere, float azimuth, float elevation, uint
 PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const PrBakeOptions& options) {
   const uint32_t resolution = pr_render_resolution(options.size0);
   Scene scene = make_model_scene(model, resolution, 1);
+  // The bark at the branch LOD a scene's frame draws (its default error), at every size
+  // (coverage_batch.cpp), not the preview's full detail: frames prune leaves around that bark.
+  scene.desc.lod_error_pixels = SceneDesc{}.lod_error_pixels;
   Renderer renderer(ctx, scene, resolution, resolution, 1);
   PrMeter meter{renderer, options};
   auto t0 = clock::now();
