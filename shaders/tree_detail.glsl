@@ -39,8 +39,14 @@ float opt_area_scale(Model m, float lambda, float p) {
   return mix(1.0, first * s, l / first) / l;
 }
 
-// λ_opt(d, p), bilinear in the d table position and log2 p.
+// λ_opt(d, p), bilinear in the d table position and log2 p. Where Cook's λ is below the first
+// measured λ (1/20) the tables hold λ_Cook itself (pr_bake.cpp fill_lambda_opt), and between
+// their far samples a straight line would lie above the parabola λ_Cook = (1 − d)², up to
+// twice Cook's leaves near d = 1 (fig7_17's far frames: 69 % more than Cook): there λ_opt is
+// λ_Cook, exactly.
 float opt_lambda(Model m, float d, float p) {
+  const float cook = lambda_cook(d);
+  if (cook < 1.0 / float(S_SAMPLES - 1)) return cook;
   uint b0, b1;
   float w;
   size_blocks(m, p, b0, b1, w);
