@@ -115,13 +115,18 @@ using mat4 = glm::mat4;
 // Per-model PR tables (floats in the prune table buffer, at Model.table_offset), measured at
 // PR_SIZES projected sizes p_b = Model.pr_size0 / 2^b (pixels across the bounding sphere):
 // per size b one block of TABLE_BLOCK floats, s_opt and q_opt at λ = i / (S_SAMPLES − 1),
-// then λ_opt at the D_SAMPLES distances of d_sample().
+// then λ_opt at the D_SAMPLES distances of d_sample(), then s_opt and q_opt at the F_SAMPLES
+// far λ below the first, λ_f = 1 / ((S_SAMPLES − 1) · 2^(f+1)) (prune::far_lambda): where Cook's
+// λ is that small (d ≥ 0.78) the leaf area to draw depends on the model and is measured too.
 #define S_SAMPLES 21
 #define D_SAMPLES 20
+#define F_SAMPLES 3
 #define PR_SIZES 6
-#define TABLE_BLOCK (2 * S_SAMPLES + D_SAMPLES)
+#define TABLE_BLOCK (2 * S_SAMPLES + D_SAMPLES + 2 * F_SAMPLES)
 #define TABLE_Q_OPT S_SAMPLES             // offset of q_opt in a block
 #define TABLE_LAMBDA_OPT (2 * S_SAMPLES)  // offset of λ_opt in a block
+#define TABLE_S_FAR (2 * S_SAMPLES + D_SAMPLES)  // offset of the far s_opt in a block
+#define TABLE_Q_FAR (TABLE_S_FAR + F_SAMPLES)    // offset of the far q_opt in a block
 #define TABLE_FLOATS (PR_SIZES * TABLE_BLOCK)
 // Bake coverage renders (SPEC_COVERAGE_LATTICES): size 0 in the red channel, and size b >= 1,
 // 2^b times smaller, with the leaf texture read b mip levels coarser, in the channel

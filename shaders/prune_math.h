@@ -32,6 +32,10 @@ PRUNE_INLINE float lambda_cook(float d) {
 // Distance of λ_opt table sample i: 10 samples in [0, 0.1), 10 in [0.1, 1].
 PRUNE_INLINE float d_sample(uint i) { return i < 10u ? float(i) * 0.01f : 0.1f + float(i - 10u) * 0.1f; }
 
+// The far λ samples of the PR tables, below the first regular one (gpu_types.h): halvings of
+// 1 / (S_SAMPLES − 1), f = 0 the largest.
+PRUNE_INLINE float far_lambda(uint f) { return 1.0f / (float(S_SAMPLES - 1) * float(2u << f)); }
+
 // Position of d between table samples: integer part = lower sample, fraction = weight.
 PRUNE_INLINE float d_table_position(float d) {
   d = clamp(d, 0.0f, 1.0f);

@@ -24,19 +24,29 @@ void size_blocks(Model m, float p, out uint b0, out uint b1, out float w) {
   w = pos - float(b0);
 }
 
-// s_opt(λ, p), bilinear in λ and log2 p. Below the first measured λ (1/20) the tables know
-// nothing (s_opt[0] only repeats s_opt[1]), and holding s there shrank the leaves' total area
-// with λ: far trees, pruned to a few percent, thinned out (fig7_17's far frames: Q 0.06–0.12
-// under Cook's). There s goes over to Cook's 1/λ, continuously: 1/λ · mix(1, λ₁ s_opt(λ₁), λ/λ₁).
+// The first regular λ sample, 1/20: below it the far samples (gpu_types.h).
+const float FIRST_LAMBDA = 1.0 / float(S_SAMPLES - 1);
+
+// s_opt(λ, p), bilinear in λ and log2 p. Below the first regular λ (1/20) the far samples
+// λ_f = 1/40, 1/80, 1/160 hold the measured s_opt: log s is interpolated in log λ there (s
+// stays monotone between monotone samples). Which leaf area a far tree needs depends on the
+// model: the area fraction λ·s of 1/20 held constant matched Cook on bench_grove and lost to
+// it by 0.016 on fig7_17 (stop 33). Below the last far sample s goes over to Cook's 1/λ,
+// continuously: 1/λ · mix(1, λ_F s_F, λ/λ_F).
 float opt_area_scale(Model m, float lambda, float p) {
   uint b0, b1;
   float w;
   size_blocks(m, p, b0, b1, w);
-  const float first = 1.0 / float(S_SAMPLES - 1);
-  float s = mix(lambda_table(m, b0, 0, max(lambda, first)), lambda_table(m, b1, 0, max(lambda, first)), w);
-  if (lambda >= first) return s;
-  float l = max(lambda, 1e-3);
-  return mix(1.0, first * s, l / first) / l;
+  if (lambda >= FIRST_LAMBDA)
+    return mix(lambda_table(m, b0, 0, lambda), lambda_table(m, b1, 0, lambda), w);
+  float u = log2(FIRST_LAMBDA / max(lambda, 1e-6));  // 0 at 1/20, f + 1 at far sample f
+  uint i = min(uint(u), F_SAMPLES - 1);             // between sample i − 1 (i = 0: 1/20) and i
+  float s_near = i == 0u ? mix(table_value(m, b0, 0, 1), table_value(m, b1, 0, 1), w)
+                         : mix(table_value(m, b0, TABLE_S_FAR, i - 1), table_value(m, b1, TABLE_S_FAR, i - 1), w);
+  float s_far = mix(table_value(m, b0, TABLE_S_FAR, i), table_value(m, b1, TABLE_S_FAR, i), w);
+  if (u <= float(F_SAMPLES)) return exp2(mix(log2(s_near), log2(s_far), u - float(i)));
+  float last = far_lambda(F_SAMPLES - 1);
+  return mix(1.0, last * s_far, lambda / last) / max(lambda, 1e-6);
 }
 
 // λ_opt(d, p), bilinear in the d table position and log2 p. Where Cook's λ is below the first
@@ -46,7 +56,7 @@ float opt_area_scale(Model m, float lambda, float p) {
 // λ_Cook, exactly.
 float opt_lambda(Model m, float d, float p) {
   const float cook = lambda_cook(d);
-  if (cook < 1.0 / float(S_SAMPLES - 1)) return cook;
+  if (cook < FIRST_LAMBDA) return cook;
   uint b0, b1;
   float w;
   size_blocks(m, p, b0, b1, w);
@@ -58,20 +68,24 @@ float opt_lambda(Model m, float d, float p) {
   return mix(l0, l1, w);
 }
 
-// The smallest λ whose q_opt(λ, p) (bilinear) reaches `quality`: the first table sample that
-// does, interpolated linearly with the one before; 1 when none does.
+// The smallest λ whose q_opt(λ, p) (bilinear) reaches `quality`: the first table sample, far
+// ones included, that does, interpolated linearly with the one before; 1 when none does.
 float target_lambda(Model m, float quality, float p) {
   uint b0, b1;
   float w;
   size_blocks(m, p, b0, b1, w);
-  float previous = 0.0;  // q_opt(0) = 0: nothing drawn
-  for (uint i = 1; i < S_SAMPLES; ++i) {
-    float q = mix(table_value(m, b0, TABLE_Q_OPT, i), table_value(m, b1, TABLE_Q_OPT, i), w);
+  float previous_q = 0.0, previous_l = 0.0;  // q_opt(0) = 0: nothing drawn
+  for (uint k = 0; k < F_SAMPLES + S_SAMPLES - 1; ++k) {  // ascending λ
+    bool far = k < F_SAMPLES;
+    uint part = far ? TABLE_Q_FAR : TABLE_Q_OPT, i = far ? F_SAMPLES - 1 - k : k - F_SAMPLES + 1;
+    float l = far ? far_lambda(i) : float(i) * FIRST_LAMBDA;
+    float q = mix(table_value(m, b0, part, i), table_value(m, b1, part, i), w);
     if (q >= quality) {
-      float t = q > previous ? clamp((quality - previous) / (q - previous), 0.0, 1.0) : 1.0;
-      return (float(i - 1) + t) / float(S_SAMPLES - 1);
+      float t = q > previous_q ? clamp((quality - previous_q) / (q - previous_q), 0.0, 1.0) : 1.0;
+      return mix(previous_l, l, t);
     }
-    previous = max(previous, q);
+    previous_q = max(previous_q, q);
+    previous_l = l;
   }
   return 1.0;
 }

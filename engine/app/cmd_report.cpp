@@ -78,6 +78,12 @@ int run_report(const ReportArgs& args) {
   for (uint32_t b = 0; b < PR_SIZES; ++b) {
     const PrSizeTables& st = t.sizes[b];
     PlotSeries s_opt{"s_opt at " + size_label(b), {}, ramp(float(b) / float(PR_SIZES - 1)), true, true};
+    for (uint32_t f = F_SAMPLES; f-- > 0;) {  // the far samples below 1/20, ascending λ
+      const float l = pr_lambda_far(f);
+      s_opt.points.push_back({l, st.s_far[f]});
+      table_csv += std::to_string(pr_size(t.size0, b)) + "," + std::to_string(l) + "," + std::to_string(st.s_far[f]) +
+                   "," + std::to_string(st.q_far[f]) + "," + std::to_string(st.q_inverse_far[f]) + "\n";
+    }
     for (uint32_t i = 0; i < S_SAMPLES; ++i) {
       const float l = pr_lambda(i);
       if (l > 0) s_opt.points.push_back({l, st.s_opt[i]});

@@ -26,6 +26,7 @@ std::vector<float> derived(uint32_t n, float (*f)(uint32_t)) {
 float pr_lambda(uint32_t i) { return float(i) / float(S_SAMPLES - 1); }
 float pr_d(uint32_t j) { return prune::d_sample(j); }
 float pr_lambda_cook(uint32_t j) { return prune::lambda_cook(prune::d_sample(j)); }
+float pr_lambda_far(uint32_t f) { return prune::far_lambda(f); }
 float pr_size(float size0, uint32_t b) { return std::ldexp(size0, -int(b)); }
 
 PrTables pr_tables_at_every_size(const PrSizeTables& one, float size0) {
@@ -45,12 +46,16 @@ nlohmann::json to_json(const PrTables& t) {
                         {"s_opt", s.s_opt},
                         {"q_opt", s.q_opt},
                         {"q_inverse", s.q_inverse},
-                        {"lambda_opt", s.lambda_opt}});
+                        {"lambda_opt", s.lambda_opt},
+                        {"s_far", s.s_far},
+                        {"q_far", s.q_far},
+                        {"q_inverse_far", s.q_inverse_far}});
   }
   return {{"format", kPrTablesFormat},
           {"lambda", derived(S_SAMPLES, pr_lambda)},
           {"d", derived(D_SAMPLES, pr_d)},
           {"lambda_cook", derived(D_SAMPLES, pr_lambda_cook)},
+          {"lambda_far", derived(F_SAMPLES, pr_lambda_far)},
           {"size0", t.size0},
           {"sizes", sizes},
           {"per_size", per_size},
@@ -101,6 +106,8 @@ PrTables pr_tables_from_json(const nlohmann::json& j, const std::string& name) {
   check_derived("d", floats("d", D_SAMPLES, 0.0f, 1.0f), derived(D_SAMPLES, pr_d), "d_sample(j)");
   check_derived("lambda_cook", floats("lambda_cook", D_SAMPLES, 0.0f, 1.0f), derived(D_SAMPLES, pr_lambda_cook),
                 "(1 - d_sample(j))^2");
+  check_derived("lambda_far", floats("lambda_far", F_SAMPLES, 0.0f, 1.0f), derived(F_SAMPLES, pr_lambda_far),
+                "1 / ((S_SAMPLES - 1) 2^(f+1))");
   if (!j.contains("size0") || !j["size0"].is_number() || !(j["size0"].get<double>() >= 1.0) ||
       !(j["size0"].get<double>() <= 65536.0))
     fail("size0", "expected a number of pixels in [1, 65536]");
@@ -119,6 +126,9 @@ PrTables pr_tables_from_json(const nlohmann::json& j, const std::string& name) {
     s.q_opt = floats_of(o, "q_opt", at + ".q_opt", S_SAMPLES, -1.0f, 1.0f);
     s.q_inverse = floats_of(o, "q_inverse", at + ".q_inverse", S_SAMPLES, -1.0f, 1.0f);
     s.lambda_opt = floats_of(o, "lambda_opt", at + ".lambda_opt", D_SAMPLES, 0.0f, 1.0f);
+    s.s_far = floats_of(o, "s_far", at + ".s_far", F_SAMPLES, 0.0f, 1e4f);
+    s.q_far = floats_of(o, "q_far", at + ".q_far", F_SAMPLES, -1.0f, 1.0f);
+    s.q_inverse_far = floats_of(o, "q_inverse_far", at + ".q_inverse_far", F_SAMPLES, -1.0f, 1.0f);
     t.sizes.push_back(std::move(s));
   }
   if (j.contains("priority")) {

@@ -6,9 +6,9 @@
 // Stored in extras.forest.pr_tables of a baked .glb (format kPrTablesFormat).
 //
 // The sample positions are not stored here: λ_i = pr_lambda(i), d_j = pr_d(j),
-// λ_Cook(d_j) = pr_lambda_cook(j) and p_b = pr_size(size0, b) follow from the index. The
-// asset still carries them (keys lambda, d, lambda_cook, sizes, for people and plots); the
-// reader checks them against these.
+// λ_Cook(d_j) = pr_lambda_cook(j), λ_f = pr_lambda_far(f) and p_b = pr_size(size0, b) follow
+// from the index. The asset still carries them (keys lambda, d, lambda_cook, lambda_far, sizes,
+// for people and plots); the reader checks them against these.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -20,8 +20,9 @@
 
 namespace forest {
 
-// 1: one size (resolution); 2: per projected size. Older formats are refused on load.
-inline constexpr int kPrTablesFormat = 2;
+// 1: one size (resolution); 2: per projected size; 3: with s_opt and q_opt at the far λ below
+// 1/20. Older formats are refused on load.
+inline constexpr int kPrTablesFormat = 3;
 
 // "Equal quality": Q ≥ Q_Cook − this, wherever a mode is judged against Cook et al. (the bench
 // summary, the scene tests). PR counts are exact, but a frame's Q moves by about 0.001 with
@@ -34,6 +35,8 @@ struct PrSizeTables {
   std::vector<float> q_opt;       // S_SAMPLES: Q(λ, s_opt(λ)) (7.7)
   std::vector<float> q_inverse;   // S_SAMPLES: Q(λ, 1/λ), Cook's area preservation
   std::vector<float> lambda_opt;  // D_SAMPLES: smallest λ with Q(λ, s_opt) >= Q(λ_Cook(d), 1/λ_Cook)
+  // The same three at the far λ_f = pr_lambda_far(f) below pr_lambda(1), f < F_SAMPLES.
+  std::vector<float> s_far, q_far, q_inverse_far;
 };
 
 struct PrTables {
@@ -47,12 +50,14 @@ struct PrTables {
 float pr_lambda(uint32_t i);       // λ of s_opt sample i < S_SAMPLES: i / (S_SAMPLES − 1)
 float pr_d(uint32_t j);            // normalized distance of λ_opt sample j < D_SAMPLES: prune::d_sample(j)
 float pr_lambda_cook(uint32_t j);  // Cook's λ at pr_d(j): (1 − d)²
+float pr_lambda_far(uint32_t f);   // far λ sample f < F_SAMPLES: pr_lambda(1) / 2^(f+1)
 float pr_size(float size0, uint32_t b);  // projected size of table size b < PR_SIZES: size0 / 2^b
 
 // Tables holding `one` at every size (hand-made tables of tests and tools).
 PrTables pr_tables_at_every_size(const PrSizeTables& one, float size0 = 512.0f);
 
-// extras.forest.pr_tables, derived keys (lambda, d, lambda_cook, sizes) and format included.
+// extras.forest.pr_tables, derived keys (lambda, d, lambda_cook, lambda_far, sizes) and format
+// included.
 nlohmann::json to_json(const PrTables& t);
 // Reads an extras.forest.pr_tables object; InputError naming `name` and
 // extras.forest.pr_tables.<key> for an older format, a wrong size, a non-number, a value out

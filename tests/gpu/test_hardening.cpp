@@ -40,6 +40,9 @@ PrTables ramp_tables() {
     float d = float(i) / float(D_SAMPLES - 1);
     t.lambda_opt.push_back(1.0f - d);
   }
+  t.s_far.assign(F_SAMPLES, 10.0f);
+  t.q_far.assign(F_SAMPLES, 1.0f);
+  t.q_inverse_far.assign(F_SAMPLES, 1.0f);
   return pr_tables_at_every_size(t);
 }
 

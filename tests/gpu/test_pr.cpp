@@ -72,6 +72,16 @@ TEST_F(PrTest, TablesHaveThePaperProperties) {
       EXPECT_LE(t.s_opt[i], t.s_opt[i - 1] + 1e-6f) << "s_opt must not grow with λ";
     }
     EXPECT_FLOAT_EQ(t.s_opt[S_SAMPLES - 1], 1.0f);
+    // The far samples below λ = 1/20 are measured like the others: at least Cook's Q, s not
+    // growing with λ across them and on into the regular samples.
+    ASSERT_EQ(t.s_far.size(), size_t(F_SAMPLES));
+    for (int f = 0; f < F_SAMPLES; ++f) {
+      SCOPED_TRACE("far " + std::to_string(f));
+      EXPECT_GE(t.q_far[f] + 1e-6f, t.q_inverse_far[f]);
+      EXPECT_GE(t.s_far[f] + 1e-6f, f == 0 ? t.s_opt[1] : t.s_far[f - 1]);
+      EXPECT_LE(t.q_far[f], (f == 0 ? t.q_opt[1] : t.q_far[f - 1]) + (b < 4 ? 0.03f : 0.08f)) << "fewer leaves, less Q";
+      EXPECT_GT(t.q_inverse_far[f], 0.0f) << "Cook's point at λ_f was measured";
+    }
     // PR points move toward (1, 1) as λ grows (quality at s_opt, allowing measurement noise,
     // which grows as the tree shrinks to a few pixels).
     for (int i = 2; i < S_SAMPLES; ++i) EXPECT_GE(t.q_opt[i], t.q_opt[i - 1] - (b < 4 ? 0.03f : 0.08f)) << i;

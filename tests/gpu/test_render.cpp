@@ -308,6 +308,9 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
   t.lambda_opt.assign(D_SAMPLES, 1.0f);
+  t.s_far.assign(F_SAMPLES, 1.0f);
+  t.q_far.assign(F_SAMPLES, 1.0f);
+  t.q_inverse_far.assign(F_SAMPLES, 1.0f);
   m.bake.pr_tables = pr_tables_at_every_size(t);
   std::vector<TreeDesc> trees = {{0, 0.0f, 0.0f, 1.0f, 0.0f}, {0, 5.0f, 20.0f, 1.0f, 30.0f}};
   Scene s = single_model_scene(m, trees);
@@ -324,4 +327,66 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   Scene half = single_model_scene(m, trees);
   Renderer rh(ctx_, half, 160, 120, 1);
   EXPECT_EQ(rh.render(half.desc.camera, nullptr, opt).leaves_drawn, 2 * prune::leaf_prefix(0.5f, uint32_t(m.leaves.size())));
+}
+
+TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
+  // Below λ = 1/20 opt draws Cook's λ with the tables' far s (tree_detail.glsl opt_area_scale):
+  // log s interpolated in log λ between the far samples, and past the last one a blend toward
+  // Cook's 1/λ. The opt render must be the fixed render at that (λ, s), and differ from the
+  // fixed render at the s a straight line between the samples would give.
+  TreeModel m = broadleaf();
+  PrSizeTables t;
+  t.s_opt.assign(S_SAMPLES, 5.0f);
+  t.q_opt.assign(S_SAMPLES, 0.5f);
+  t.q_inverse.assign(S_SAMPLES, 0.4f);
+  t.lambda_opt.assign(D_SAMPLES, 0.5f);
+  t.s_far = {10.0f, 40.0f, 80.0f};
+  t.q_far.assign(F_SAMPLES, 0.3f);
+  t.q_inverse_far.assign(F_SAMPLES, 0.2f);
+  m.bake.pr_tables = pr_tables_at_every_size(t);
+  Scene s = single_model_scene(m, {{0, 0.0f, 0.0f, 1.0f, 0.0f}});
+  ASSERT_EQ(s.instances.size(), 1u);
+  const gpu::Instance& inst = s.instances[0];  // yaw 0, scale 1: the sphere shifted to the tree
+  ASSERT_FLOAT_EQ(inst.yaw_cos_sin.x, 1.0f);
+  const glm::vec3 centre = glm::vec3(inst.position_scale) + glm::vec3(m.bounding_sphere) * inst.position_scale.w;
+  s.desc.camera.position = centre + glm::vec3(0.0f, 2.0f, -4.0f * m.bounding_sphere.w);
+  s.desc.camera.target = centre;
+  const float distance = glm::distance(s.desc.camera.position, centre);
+  Renderer r(ctx_, s, 160, 120, 1);
+  // u = log2(1/20 / λ): 1.5 lies between far samples 0 and 1, 3.5 past the last.
+  for (float u : {1.5f, 3.5f}) {
+    SCOPED_TRACE("u = " + std::to_string(u));
+    const float lambda = 1.0f / (20.0f * std::exp2(u));
+    const float d = 1.0f - std::sqrt(lambda);
+    s.desc.prune_distance = distance / d;  // read by every frame (the renderer holds the scene)
+    float expected = 0, straight = 0;
+    if (u < 2.0f) {
+      expected = std::exp2(0.5f * (std::log2(10.0f) + std::log2(40.0f)));  // 20
+      straight = 25.0f;
+    } else {
+      const float last = prune::far_lambda(F_SAMPLES - 1);
+      expected = (1.0f + (last * 80.0f - 1.0f) * lambda / last) / lambda;
+      straight = 1.0f / lambda;  // Cook's s, a straight line to λ = 0 of the area fraction
+    }
+    FrameSettings opt, fixed, wrong;
+    opt.prune_mode = PruneMode::opt;
+    fixed.prune_mode = wrong.prune_mode = PruneMode::fixed;
+    fixed.fixed_lambda = wrong.fixed_lambda = prune::lambda_cook(d);
+    fixed.fixed_scale = expected;
+    wrong.fixed_scale = straight;
+    opt.mask = fixed.mask = wrong.mask = true;
+    FrameImage a, b, c;
+    FrameStats so = r.render(s.desc.camera, &a, opt);
+    r.render(s.desc.camera, &b, fixed);
+    r.render(s.desc.camera, &c, wrong);
+    EXPECT_EQ(so.leaves_drawn, prune::leaf_prefix(fixed.fixed_lambda, uint32_t(m.leaves.size())));
+    EXPECT_GT(so.leaves_drawn, 3u);
+    auto differing = [](const FrameImage& x, const FrameImage& y) {
+      size_t n = 0;
+      for (size_t i = 0; i < x.rgba.size(); i += 4) n += (x.rgba[i] > 127) != (y.rgba[i] > 127);
+      return n;
+    };
+    EXPECT_LE(differing(a, b), 4u);
+    EXPECT_GT(differing(a, c), 40u);
+  }
 }

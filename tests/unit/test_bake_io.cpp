@@ -129,6 +129,9 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
     st.q_opt = distinct_values(S_SAMPLES, -1.0f, 1.0f, 0.37 + 0.01 * b);
     st.q_inverse = distinct_values(S_SAMPLES, -0.9f, 0.95f, 0.41 + 0.01 * b);
     st.lambda_opt = distinct_values(D_SAMPLES, 0.05f, 0.95f, 0.67 + 0.01 * b);
+    st.s_far = distinct_values(F_SAMPLES, 20.0f, 200.0f, 0.71 + 0.01 * b);
+    st.q_far = distinct_values(F_SAMPLES, -1.0f, 1.0f, 0.53 + 0.01 * b);
+    st.q_inverse_far = distinct_values(F_SAMPLES, -0.9f, 0.95f, 0.59 + 0.01 * b);
     for (const auto* v : {&st.s_opt, &st.q_opt, &st.q_inverse, &st.lambda_opt}) {
       ASSERT_TRUE(all_distinct(*v));
       ASSERT_FALSE(monotonic(*v));
@@ -198,6 +201,9 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
     expect_same_floats(tables->sizes[b].q_opt, t.sizes[b].q_opt, "q_opt");
     expect_same_floats(tables->sizes[b].q_inverse, t.sizes[b].q_inverse, "q_inverse");
     expect_same_floats(tables->sizes[b].lambda_opt, t.sizes[b].lambda_opt, "lambda_opt");
+    expect_same_floats(tables->sizes[b].s_far, t.sizes[b].s_far, "s_far");
+    expect_same_floats(tables->sizes[b].q_far, t.sizes[b].q_far, "q_far");
+    expect_same_floats(tables->sizes[b].q_inverse_far, t.sizes[b].q_inverse_far, "q_inverse_far");
   }
   EXPECT_EQ(tables->priority, "combined");
   EXPECT_EQ(tables->views, 13);
@@ -248,6 +254,9 @@ const std::vector<uint8_t>& baked_glb() {
     st.q_opt.assign(S_SAMPLES, 0.5f);
     st.q_inverse.assign(S_SAMPLES, 0.25f);
     st.lambda_opt.assign(D_SAMPLES, 0.75f);
+    st.s_far.assign(F_SAMPLES, 30.0f);
+    st.q_far.assign(F_SAMPLES, 0.1f);
+    st.q_inverse_far.assign(F_SAMPLES, 0.05f);
     PrTables t = pr_tables_at_every_size(st, 64.0f);
     t.priority = "combined";
     t.views = 2;
@@ -297,6 +306,12 @@ TEST(BakeIo, DerivedTableValuesAreChecked) {
   expect_refused([](nlohmann::json& f) { f["pr_tables"]["lambda_cook"][0] = 0.99; },
                  "extras.forest.pr_tables.lambda_cook: lambda_cook[0]");
   expect_refused([](nlohmann::json& f) { f["pr_tables"]["d"].erase(0); }, "extras.forest.pr_tables.d");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["lambda_far"][1] = 0.05; },
+                 "extras.forest.pr_tables.lambda_far: lambda_far[1]");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][2]["s_far"].erase(0); },
+                 "extras.forest.pr_tables.per_size[2].s_far");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][1]["q_far"][0] = "x"; },
+                 "extras.forest.pr_tables.per_size[1].q_far");
   expect_refused([](nlohmann::json& f) { f["pr_tables"].erase("lambda"); }, "extras.forest.pr_tables.lambda");
   // Measured tables out of range, as before.
   expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][4]["lambda_opt"][2] = 1.5; },
@@ -315,7 +330,12 @@ TEST(BakeIo, TablesOfAnOlderFormatAskForABake) {
     t.erase("per_size");
     t.erase("format");
   }, "extras.forest.pr_tables.format: missing: PR tables of format 1 (measured at one size); generate the model again");
-  expect_refused([](nlohmann::json& f) { f["pr_tables"]["format"] = 3; }, "extras.forest.pr_tables.format: expected 2");
+  // Format 2 had no far samples: s_opt below λ = 1/20 was extrapolated, not measured.
+  expect_refused([](nlohmann::json& f) {
+    f["pr_tables"]["format"] = 2;
+    f["pr_tables"].erase("lambda_far");
+    for (auto& s : f["pr_tables"]["per_size"]) s.erase("s_far"), s.erase("q_far"), s.erase("q_inverse_far");
+  }, "extras.forest.pr_tables.format: expected 3");
 }
 
 TEST(BakeIo, HullSamplesAreChecked) {

@@ -175,6 +175,7 @@ ScaleSearch start_search(float lambda, uint32_t candidates) {
 // and searched size.
 struct SamplePlan {
   std::vector<float> lambdas;  // S_SAMPLES
+  std::vector<float> far;      // F_SAMPLES: the far λ below lambdas[1]
   std::vector<float> cook;     // D_SAMPLES: λ_Cook(d_j)
   std::vector<Point> first;    // Cook's points, and the start of every s search (or the whole grid)
   std::vector<ScaleSearch> searches;
@@ -191,9 +192,12 @@ SamplePlan plan_samples(const PrBakeOptions& options) {
     plan.cook[j] = pr_lambda_cook(j);
     if (plan.cook[j] > 0.0f) plan.first.push_back({plan.cook[j], 1.0f / plan.cook[j]});
   }
+  for (uint32_t f = 0; f < F_SAMPLES; ++f) plan.far.push_back(pr_lambda_far(f));
   const uint32_t searched = std::clamp(options.searched_sizes, 1u, uint32_t(PR_SIZES));
-  for (uint32_t i = 1; i < S_SAMPLES; ++i) {
-    ScaleSearch ss = start_search(plan.lambdas[i], options.scale_candidates);
+  std::vector<float> searched_lambdas(plan.lambdas.begin() + 1, plan.lambdas.end());
+  searched_lambdas.insert(searched_lambdas.end(), plan.far.begin(), plan.far.end());
+  for (float lambda : searched_lambdas) {
+    ScaleSearch ss = start_search(lambda, options.scale_candidates);
     plan.first.push_back({ss.lambda, 1.0f / ss.lambda});  // Cook's s = 1/λ is always measured (q_inverse)
     if (!options.search_scale)
       for (float s : ss.s) plan.first.push_back({ss.lambda, s});
@@ -241,41 +245,62 @@ void run_scale_searches(PrMeter& m, SamplePlan& plan) {
 // s_opt(λ) (ties to the smaller s), q_opt and q_inverse at size b from the measured points.
 // q_opt is not the best pooled Q itself: the maximum over a dozen s values of a Q that one
 // pixel moves by 0.005–0.03 at small sizes is biased upward (the winner's curse), and λ_opt
-// came out too small by that bias (bench_grove: opt 0.007 under Cook). So each half of the
-// views chooses its s and is measured at the other half's choice (two-fold cross-fitting);
-// where that held-out Q does not beat Cook's s = 1/λ, s_opt is Cook's.
-void fill_scale_tables(PrSizeTables& t, const PrMeter& m, const std::vector<float>& lambdas, uint32_t b) {
+// came out too small by that bias. So each half of the views chooses its s and is measured
+// at the other half's choice (two-fold cross-fitting); where that held-out Q does not beat
+// Cook's s = 1/λ, s_opt is Cook's.
+struct ScaleChoice {
+  float s = 1.0f;
+  float q = 1.0f, q_inverse = 1.0f;
+};
+
+ScaleChoice choose_scale(const PrMeter& m, float l, uint32_t b) {
+  struct Best {
+    double q = -2.0;
+    float s = 0.0f;
+    void offer(double qs, float ss) {
+      if (qs > q || (qs == q && ss < s)) q = qs, s = ss;
+    }
+  } pooled, half[2];
+  ScaleChoice c;
+  for (auto& [key, pr] : m.sums) {
+    if (key.first != l) continue;
+    pooled.offer(pr[b].quality(), key.second);
+    for (int f = 0; f < 2; ++f) half[f].offer(m.folds.at(key)[size_t(f)][b].quality(), key.second);
+    if (key.second == 1.0f / l) c.q_inverse = float(pr[b].quality());
+  }
+  c.s = pooled.s;
+  c.q = float(pooled.q);
+  if (m.options.views < 2) return c;
+  PrResult held = m.folds.at({l, half[0].s})[1][b];
+  held += m.folds.at({l, half[1].s})[0][b];
+  c.q = float(held.quality());
+  if (c.q <= c.q_inverse) c.s = 1.0f / l, c.q = c.q_inverse;
+  return c;
+}
+
+void fill_scale_tables(PrSizeTables& t, const PrMeter& m, const SamplePlan& plan, uint32_t b) {
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
-  const bool cross_fit = m.options.views > 1;
   for (uint32_t i = 1; i < S_SAMPLES; ++i) {
-    float l = lambdas[i];
-    struct Best {
-      double q = -2.0;
-      float s = 0.0f;
-      void offer(double qs, float ss) {
-        if (qs > q || (qs == q && ss < s)) q = qs, s = ss;
-      }
-    } pooled, half[2];
-    for (auto& [key, pr] : m.sums) {
-      if (key.first != l) continue;
-      pooled.offer(pr[b].quality(), key.second);
-      for (int f = 0; f < 2; ++f) half[f].offer(m.folds.at(key)[size_t(f)][b].quality(), key.second);
-      if (key.second == 1.0f / l) t.q_inverse[i] = float(pr[b].quality());
-    }
-    t.s_opt[i] = pooled.s;
-    t.q_opt[i] = float(pooled.q);
-    if (!cross_fit) continue;
-    PrResult held = m.folds.at({l, half[0].s})[1][b];
-    held += m.folds.at({l, half[1].s})[0][b];
-    t.q_opt[i] = float(held.quality());
-    if (t.q_opt[i] <= t.q_inverse[i]) t.s_opt[i] = 1.0f / l, t.q_opt[i] = t.q_inverse[i];
+    ScaleChoice c = choose_scale(m, plan.lambdas[i], b);
+    t.s_opt[i] = c.s, t.q_opt[i] = c.q, t.q_inverse[i] = c.q_inverse;
   }
-  // s must not pop as λ changes: non-increasing in λ, exactly 1 at full detail, and λ = 0
-  // (nothing drawn) borrows its neighbour's value.
+  t.s_far.assign(F_SAMPLES, 1.0f);
+  t.q_far.assign(F_SAMPLES, 1.0f);
+  t.q_inverse_far.assign(F_SAMPLES, 1.0f);
+  for (uint32_t f = 0; f < F_SAMPLES; ++f) {
+    ScaleChoice c = choose_scale(m, plan.far[f], b);
+    t.s_far[f] = c.s, t.q_far[f] = c.q, t.q_inverse_far[f] = c.q_inverse;
+  }
+  // s must not pop as λ changes: non-increasing in λ over the far and the regular samples,
+  // exactly 1 at full detail, and λ = 0 (nothing drawn) borrows its neighbour's value.
+  std::vector<float> ascending(t.s_far.rbegin(), t.s_far.rend());
+  ascending.insert(ascending.end(), t.s_opt.begin() + 1, t.s_opt.end());
+  ascending = non_increasing(ascending);
+  for (uint32_t f = 0; f < F_SAMPLES; ++f) t.s_far[f] = ascending[F_SAMPLES - 1 - f];
+  std::copy(ascending.begin() + F_SAMPLES, ascending.end(), t.s_opt.begin() + 1);
   t.s_opt[0] = t.s_opt[1];
-  t.s_opt = non_increasing(t.s_opt);
   t.s_opt[S_SAMPLES - 1] = 1.0f;
   t.q_opt[0] = 0.0f;
   t.q_inverse[0] = 0.0f;
@@ -353,7 +378,7 @@ PrMeasurement measure_pr_tables(vk::Context& ctx, const TreeModel& model, const 
   t.size0 = float(options.size0);
   t.sizes.resize(PR_SIZES);
   for (uint32_t b = 0; b < PR_SIZES; ++b) {
-    fill_scale_tables(t.sizes[b], meter, plan.lambdas, b);
+    fill_scale_tables(t.sizes[b], meter, plan, b);
     fill_lambda_opt(t.sizes[b], meter.sums, plan.cook, b);
   }
   if (options.progress) options.progress(1.0);
