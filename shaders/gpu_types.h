@@ -112,21 +112,30 @@ using mat4 = glm::mat4;
 // (prefix and occlusion tail), then per cascade n branch draws followed by n leaf draws.
 #define COMMANDS_PER_INSTANCE (3 + 2 * SHADOW_CASCADES)
 
+// Target mode (PRUNE_TARGET): each tree draws the smallest λ whose q_opt reaches the quality
+// and whose q_low, the 10th percentile of Q over the bake's views and sub-pixel phases (what
+// single trees in a frame see), reaches the quality minus this.
+#define TARGET_LOW_MARGIN 0.03
+#define TARGET_LOW_QUANTILE 0.1  // the quantile q_low holds
+
 // Per-model PR tables (floats in the prune table buffer, at Model.table_offset), measured at
 // PR_SIZES projected sizes p_b = Model.pr_size0 / 2^b (pixels across the bounding sphere):
 // per size b one block of TABLE_BLOCK floats, s_opt and q_opt at λ = i / (S_SAMPLES − 1),
 // then λ_opt at the D_SAMPLES distances of d_sample(), then s_opt and q_opt at the F_SAMPLES
 // far λ below the first, λ_f = 1 / ((S_SAMPLES − 1) · 2^(f+1)) (prune::far_lambda): where Cook's
 // λ is that small (d ≥ 0.78) the leaf area to draw depends on the model and is measured too.
+// Last q_low at the S_SAMPLES λ and at the F_SAMPLES far ones (TARGET_LOW_MARGIN).
 #define S_SAMPLES 21
 #define D_SAMPLES 20
 #define F_SAMPLES 3
 #define PR_SIZES 6
-#define TABLE_BLOCK (2 * S_SAMPLES + D_SAMPLES + 2 * F_SAMPLES)
+#define TABLE_BLOCK (3 * S_SAMPLES + D_SAMPLES + 3 * F_SAMPLES)
 #define TABLE_Q_OPT S_SAMPLES             // offset of q_opt in a block
 #define TABLE_LAMBDA_OPT (2 * S_SAMPLES)  // offset of λ_opt in a block
 #define TABLE_S_FAR (2 * S_SAMPLES + D_SAMPLES)  // offset of the far s_opt in a block
 #define TABLE_Q_FAR (TABLE_S_FAR + F_SAMPLES)    // offset of the far q_opt in a block
+#define TABLE_Q_LOW (TABLE_Q_FAR + F_SAMPLES)    // offset of q_low in a block
+#define TABLE_Q_LOW_FAR (TABLE_Q_LOW + S_SAMPLES)  // offset of the far q_low in a block
 #define TABLE_FLOATS (PR_SIZES * TABLE_BLOCK)
 // Bake coverage renders (SPEC_COVERAGE_LATTICES): size 0 in the red channel, and size b >= 1,
 // 2^b times smaller, with the leaf texture read b mip levels coarser, in the channel
@@ -200,7 +209,7 @@ GPU_STRUCT FrameData {
 // Push constants of the tree and terrain vertex shaders: where a draw's commands start and
 // which camera projects it. The camera's own draws use frame.view_proj (cascade SHADOW_NONE);
 // the shadow pass draws each cascade with frame.shadow_view_proj[cascade]. Placed after
-// PrCountPush (24 bytes) so the compute and vertex ranges of the shared layout do not overlap.
+// PrCountPush (28 bytes) so the compute and vertex ranges of the shared layout do not overlap.
 #define DRAW_PUSH_OFFSET 32
 struct DrawPush {
   uint command_base;  // index of the draw's first DrawCommand (gl_DrawID counts from it)
@@ -368,7 +377,13 @@ struct PrCountPush {
   uint result;         // index into the PrCounts array; with lattices, of its first of PR_SIZES
   uint width;          // pixels per row (lattices)
   uint lattices;       // 1: frames from SPEC_COVERAGE_LATTICES, counted per PR size
+  // Lattices only: PR_NO_MASK, or the index of the first of PR_PHASE_BINS counts per sub-pixel
+  // phase, each one what a render at size b >= 1 at that phase counts (prune::phase_bin).
+  uint phase_result;
 };
+// Size b has 4^b sub-pixel phases: bins (4^b − 1)/3 … (4^(b+1) − 1)/3 − 1 (bin 0, size 0's
+// only phase, stays empty: it is the size's total).
+#define PR_PHASE_BINS ((1u << (2u * PR_SIZES)) / 3u)
 
 // Push constants of depth_pyramid.comp: one level's reduction.
 struct DepthPyramidPush {

@@ -48,6 +48,13 @@ void main() {
         tp[b] += relevant && retrieved ? 1u : 0u;
         fp[b] += !relevant && retrieved ? 1u : 0u;
         fn[b] += relevant && !retrieved ? 1u : 0u;
+        // Per phase: one pixel per phase and job at 8 px; global atomics only where covered.
+        if (push.phase_result != PR_NO_MASK && (relevant || retrieved)) {
+          uint at = push.phase_result + phase_bin(b, x, y);
+          if (relevant && retrieved) atomicAdd(pr[at].tp, 1u);
+          else if (retrieved) atomicAdd(pr[at].fp, 1u);
+          else atomicAdd(pr[at].fn, 1u);
+        }
       }
     }
     if (++x == width) x = 0u, ++y;

@@ -64,6 +64,12 @@ PRUNE_INLINE float size_table_position(float p, float size0) {
 // and 2 at the even pixels, 3 and 4 at the odd ones. Written for PR_SIZES = 6.
 PRUNE_INLINE uint lattice_size(uint channel, uint parity) { return channel == 3u ? 5u : channel + 2u * parity; }
 PRUNE_INLINE uint pixel_parity(uint x, uint y) { return (x + y) & 1u; }
+// The per-phase count bin (gpu_types.h PR_PHASE_BINS) of size b at pixel (x, y) of a bake
+// render: that pixel is the sample point of a render 2^b smaller at phase (x, y) mod 2^b.
+PRUNE_INLINE uint phase_bin(uint b, uint x, uint y) {
+  uint cell = 1u << b;
+  return ((1u << (2u * b)) - 1u) / 3u + (y & (cell - 1u)) * cell + (x & (cell - 1u));
+}
 
 // Leaves drawn out of n at detail λ: k = ⌈λ·n⌉, at least one while λ > 0.
 PRUNE_INLINE uint leaf_prefix(float lambda, uint n) {

@@ -74,7 +74,7 @@ int run_report(const ReportArgs& args) {
   // s vs λ (Fig 7.9) per projected size, with Cook's 1/λ.
   Plot sp{"leaf area scale: " + name, "lambda", "s", {0, 1}, {0, 12}, {}};
   PlotSeries inv{"1/lambda (Cook)", {}, {0.2f, 0.2f, 0.2f}};
-  std::string table_csv = "size_px,lambda,s_opt,q_opt,q_inverse\n";
+  std::string table_csv = "size_px,lambda,s_opt,q_opt,q_inverse,q_low\n";
   for (uint32_t b = 0; b < PR_SIZES; ++b) {
     const PrSizeTables& st = t.sizes[b];
     PlotSeries s_opt{"s_opt at " + size_label(b), {}, ramp(float(b) / float(PR_SIZES - 1)), true, true};
@@ -82,14 +82,15 @@ int run_report(const ReportArgs& args) {
       const float l = pr_lambda_far(f);
       s_opt.points.push_back({l, st.s_far[f]});
       table_csv += std::to_string(pr_size(t.size0, b)) + "," + std::to_string(l) + "," + std::to_string(st.s_far[f]) +
-                   "," + std::to_string(st.q_far[f]) + "," + std::to_string(st.q_inverse_far[f]) + "\n";
+                   "," + std::to_string(st.q_far[f]) + "," + std::to_string(st.q_inverse_far[f]) + "," +
+                   std::to_string(st.q_low_far[f]) + "\n";
     }
     for (uint32_t i = 0; i < S_SAMPLES; ++i) {
       const float l = pr_lambda(i);
       if (l > 0) s_opt.points.push_back({l, st.s_opt[i]});
       if (l > 0 && b == 0) inv.points.push_back({l, 1.0f / l});
       table_csv += std::to_string(pr_size(t.size0, b)) + "," + std::to_string(l) + "," + std::to_string(st.s_opt[i]) +
-                   "," + std::to_string(st.q_opt[i]) + "," + std::to_string(st.q_inverse[i]) + "\n";
+                   "," + std::to_string(st.q_opt[i]) + "," + std::to_string(st.q_inverse[i]) + "," + std::to_string(st.q_low[i]) + "\n";
     }
     sp.series.push_back(s_opt);
   }

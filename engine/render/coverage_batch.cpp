@@ -88,17 +88,18 @@ void Renderer::set_coverage_views(const std::vector<CameraDesc>& views) {
   slot.pending = false;
 }
 
-std::vector<PrSizes> Renderer::compare_coverage(const std::vector<CoverageJob>& jobs) {
+std::vector<PrSizes> Renderer::compare_coverage(const std::vector<CoverageJob>& jobs, std::vector<PrPhases>* phases) {
   std::vector<PrSizes> out(jobs.size());
   if (jobs.empty()) return out;
   for (const CoverageJob& j : jobs)
     if (j.view >= coverage_views_.size()) throw vk::VkFailure("compare_coverage: view without set_coverage_views");
   const uint32_t count = uint32_t(jobs.size());
-  reserve_coverage(1, count * PR_SIZES);
+  const uint32_t stride = PR_SIZES + (phases ? PR_PHASE_BINS : 0u);  // PrCounts per job
+  reserve_coverage(1, count * stride);
   const uint32_t pixels = width_ * height_;
   FrameSlot& slot = next_slot();
   vk::begin_commands(slot.cmd);
-  vkCmdFillBuffer(slot.cmd, pr_count_.counts.buffer, 0, sizeof(gpu::PrCounts) * count * PR_SIZES, 0);
+  vkCmdFillBuffer(slot.cmd, pr_count_.counts.buffer, 0, sizeof(gpu::PrCounts) * count * stride, 0);
   for (uint32_t i = 0; i < count; ++i) {
     const CoverageJob& j = jobs[i];
     FrameSettings test;
@@ -115,20 +116,27 @@ std::vector<PrSizes> Renderer::compare_coverage(const std::vector<CoverageJob>& 
     full_barrier(slot.cmd);
     vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &slot.set, 0, nullptr);
     record_pr_count_pass(slot.cmd, pr_count_, layout_,
-                         {pixels, 2 * j.view * pixels, (2 * j.view + 1) * pixels, i * PR_SIZES, width_, 1u});
+                         {pixels, 2 * j.view * pixels, (2 * j.view + 1) * pixels, i * stride, width_, 1u,
+                          phases ? i * stride + PR_SIZES : PR_NO_MASK});
     full_barrier(slot.cmd);
   }
-  record_pr_readback(slot.cmd, pr_count_, count * PR_SIZES);
+  record_pr_readback(slot.cmd, pr_count_, count * stride);
   VK_CHECK(vkEndCommandBuffer(slot.cmd));
   submit(slot);
   wait(slot);
   slot.pending = false;
-  std::vector<gpu::PrCounts> counts = read_pr_counts(pr_count_, count * PR_SIZES);
-  for (uint32_t i = 0; i < count; ++i)
+  std::vector<gpu::PrCounts> counts = read_pr_counts(pr_count_, count * stride);
+  if (phases) phases->assign(count, PrPhases(PR_PHASE_BINS));
+  for (uint32_t i = 0; i < count; ++i) {
     for (uint32_t b = 0; b < PR_SIZES; ++b) {
-      const gpu::PrCounts& c = counts[i * PR_SIZES + b];
+      const gpu::PrCounts& c = counts[i * stride + b];
       out[i][b] = {c.tp, c.fp, c.fn};
     }
+    for (uint32_t k = 0; phases && k < PR_PHASE_BINS; ++k) {
+      const gpu::PrCounts& c = counts[i * stride + PR_SIZES + k];
+      (*phases)[i][k] = {c.tp, c.fp, c.fn};
+    }
+  }
   return out;
 }
 

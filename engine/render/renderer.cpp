@@ -257,7 +257,7 @@ void Renderer::record_output(VkCommandBuffer cmd, Output output, VkDescriptorSet
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   // The depth pyramid may have bound its own sets since the cull pass.
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-  record_pr_count_pass(cmd, pr_count_, layout_, {width_ * height_, 0, PR_NO_MASK, 0, width_, 0u});
+  record_pr_count_pass(cmd, pr_count_, layout_, {width_ * height_, 0, PR_NO_MASK, 0, width_, 0u, PR_NO_MASK});
   record_pr_readback(cmd, pr_count_, 1);
 }
 

@@ -137,6 +137,8 @@ struct PrResult {
 // Counts of one coverage render at each PR size: [0] at the render's resolution, [b] at 2^-b
 // of it (the lattices of gpu_types.h).
 using PrSizes = std::array<PrResult, PR_SIZES>;
+// Counts of one coverage render per sub-pixel phase of each size b >= 1 (PR_PHASE_BINS).
+using PrPhases = std::vector<PrResult>;
 
 // One pruned coverage render of a batch: the model at detail λ with leaf area scale s, seen
 // from one of the views given to Renderer::set_coverage_views.
@@ -196,7 +198,9 @@ class Renderer {
   // render_reference + compare_with_reference, without redrawing the branches — all jobs in
   // one submit. Every render also counts the coverage at the smaller PR sizes (lattices).
   void set_coverage_views(const std::vector<CameraDesc>& views);
-  std::vector<PrSizes> compare_coverage(const std::vector<CoverageJob>& jobs);
+  // With `phases`, also each job's counts per sub-pixel phase of the smaller sizes
+  // (PR_PHASE_BINS, indexed by prune::phase_bin): one small render's counts each.
+  std::vector<PrSizes> compare_coverage(const std::vector<CoverageJob>& jobs, std::vector<PrPhases>* phases = nullptr);
 
   // Occlusion feedback state of every instance, read back from the GPU (tests, tools).
   std::vector<gpu::InstanceState> instance_states();

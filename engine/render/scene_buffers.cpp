@@ -125,7 +125,8 @@ void add_bake_data(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
     bool sized = t->sizes.size() == PR_SIZES;
     for (const PrSizeTables& b : t->sizes)
       sized = sized && b.s_opt.size() == S_SAMPLES && b.q_opt.size() == S_SAMPLES && b.lambda_opt.size() == D_SAMPLES &&
-              b.s_far.size() == F_SAMPLES && b.q_far.size() == F_SAMPLES;
+              b.s_far.size() == F_SAMPLES && b.q_far.size() == F_SAMPLES && b.q_low.size() == S_SAMPLES &&
+              b.q_low_far.size() == F_SAMPLES;
     if (!sized) throw std::invalid_argument("upload_scene: PR tables of the wrong shape");
     m.has_tables = 1;
     m.table_offset = uint32_t(a.tables.size());
@@ -136,6 +137,8 @@ void add_bake_data(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
       a.tables.insert(a.tables.end(), b.lambda_opt.begin(), b.lambda_opt.end());
       a.tables.insert(a.tables.end(), b.s_far.begin(), b.s_far.end());
       a.tables.insert(a.tables.end(), b.q_far.begin(), b.q_far.end());
+      a.tables.insert(a.tables.end(), b.q_low.begin(), b.q_low.end());
+      a.tables.insert(a.tables.end(), b.q_low_far.begin(), b.q_low_far.end());
     }
   }
   OcclusionSamples occ = occlusion_samples(tm);

@@ -49,7 +49,9 @@ nlohmann::json to_json(const PrTables& t) {
                         {"lambda_opt", s.lambda_opt},
                         {"s_far", s.s_far},
                         {"q_far", s.q_far},
-                        {"q_inverse_far", s.q_inverse_far}});
+                        {"q_inverse_far", s.q_inverse_far},
+                        {"q_low", s.q_low},
+                        {"q_low_far", s.q_low_far}});
   }
   return {{"format", kPrTablesFormat},
           {"lambda", derived(S_SAMPLES, pr_lambda)},
@@ -129,6 +131,8 @@ PrTables pr_tables_from_json(const nlohmann::json& j, const std::string& name) {
     s.s_far = floats_of(o, "s_far", at + ".s_far", F_SAMPLES, 0.0f, 1e4f);
     s.q_far = floats_of(o, "q_far", at + ".q_far", F_SAMPLES, -1.0f, 1.0f);
     s.q_inverse_far = floats_of(o, "q_inverse_far", at + ".q_inverse_far", F_SAMPLES, -1.0f, 1.0f);
+    s.q_low = floats_of(o, "q_low", at + ".q_low", S_SAMPLES, -1.0f, 1.0f);
+    s.q_low_far = floats_of(o, "q_low_far", at + ".q_low_far", F_SAMPLES, -1.0f, 1.0f);
     t.sizes.push_back(std::move(s));
   }
   if (j.contains("priority")) {

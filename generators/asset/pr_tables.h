@@ -21,7 +21,7 @@
 namespace forest {
 
 // 1: one size (resolution); 2: per projected size; 3: with s_opt and q_opt at the far λ below
-// 1/20. Older formats are refused on load.
+// 1/20, and the low quantile q_low. Older formats are refused on load.
 inline constexpr int kPrTablesFormat = 3;
 
 // "Equal quality": Q ≥ Q_Cook − this, wherever a mode is judged against Cook et al. (the bench
@@ -37,6 +37,9 @@ struct PrSizeTables {
   std::vector<float> lambda_opt;  // D_SAMPLES: smallest λ with Q(λ, s_opt) >= Q(λ_Cook(d), 1/λ_Cook)
   // The same three at the far λ_f = pr_lambda_far(f) below pr_lambda(1), f < F_SAMPLES.
   std::vector<float> s_far, q_far, q_inverse_far;
+  // S_SAMPLES and F_SAMPLES: at each λ and its s_opt, the TARGET_LOW_QUANTILE quantile of Q
+  // over the views and sub-pixel phases, each one what a single tree at this size may see.
+  std::vector<float> q_low, q_low_far;
 };
 
 struct PrTables {

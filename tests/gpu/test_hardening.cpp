@@ -43,6 +43,8 @@ PrTables ramp_tables() {
   t.s_far.assign(F_SAMPLES, 10.0f);
   t.q_far.assign(F_SAMPLES, 1.0f);
   t.q_inverse_far.assign(F_SAMPLES, 1.0f);
+  t.q_low.assign(S_SAMPLES, 1.0f);
+  t.q_low_far.assign(F_SAMPLES, 1.0f);
   return pr_tables_at_every_size(t);
 }
 

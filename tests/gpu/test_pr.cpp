@@ -81,7 +81,14 @@ TEST_F(PrTest, TablesHaveThePaperProperties) {
       EXPECT_GE(t.s_far[f] + 1e-6f, f == 0 ? t.s_opt[1] : t.s_far[f - 1]);
       EXPECT_LE(t.q_far[f], (f == 0 ? t.q_opt[1] : t.q_far[f - 1]) + (b < 4 ? 0.03f : 0.08f)) << "fewer leaves, less Q";
       EXPECT_GT(t.q_inverse_far[f], 0.0f) << "Cook's point at λ_f was measured";
+      EXPECT_LE(t.q_low_far[f], t.q_far[f] + 0.05f);
     }
+    // The low quantile of single renders: under the pooled Q (allowing the cross-fitting's
+    // noise), 1 at full detail, and rising with λ.
+    for (int i = 1; i < S_SAMPLES; ++i) EXPECT_LE(t.q_low[i], t.q_opt[i] + 0.05f) << i;
+    EXPECT_FLOAT_EQ(t.q_low[S_SAMPLES - 1], 1.0f);
+    EXPECT_GT(t.q_low[S_SAMPLES / 2], t.q_low[1]);
+    if (b >= 3) EXPECT_LT(t.q_low[4], t.q_opt[4] - 0.01f) << "single small trees spread below their mean";
     // PR points move toward (1, 1) as λ grows (quality at s_opt, allowing measurement noise,
     // which grows as the tree shrinks to a few pixels).
     for (int i = 2; i < S_SAMPLES; ++i) EXPECT_GE(t.q_opt[i], t.q_opt[i - 1] - (b < 4 ? 0.03f : 0.08f)) << i;
@@ -112,13 +119,16 @@ TEST_F(PrTest, EachLatticeCountsWhatARenderAtItsSizeCounts) {
   CameraDesc cam = pr_view_camera(m.bounding_sphere, 0.7f, 0.2f, R - 4, R);
   r.set_coverage_views({cam});
   const std::vector<CoverageJob> jobs = {{0, 0.3f, 2.5f}, {0, 0.1f, 6.0f}};
-  std::vector<PrSizes> lattice = r.compare_coverage(jobs);
+  std::vector<PrPhases> phase_counts;
+  std::vector<PrSizes> lattice = r.compare_coverage(jobs, &phase_counts);
+  ASSERT_EQ(phase_counts.size(), jobs.size());
   for (uint32_t b = 1; b < PR_SIZES; ++b) {
     const uint32_t low = R >> b, cell = 1u << b, stride = b == 5 ? 4u : 1u;
     Scene small = make_model_scene(m, low, 1);
     Renderer rs(ctx_, small, low, low, 1);
     std::vector<PrResult> real(jobs.size());
     uint32_t phases = 0;
+    std::vector<uint64_t> worst(jobs.size(), 0), covered(jobs.size(), 0);  // per phase: |lattice − render|
     for (uint32_t py = 0; py < cell; py += stride)
       for (uint32_t px = 0; px < cell; px += stride) {
         const uint32_t parity = prune::pixel_parity(px, py);
@@ -138,12 +148,21 @@ TEST_F(PrTest, EachLatticeCountsWhatARenderAtItsSizeCounts) {
           test.prune_mode = PruneMode::fixed;
           test.fixed_lambda = jobs[k].lambda;
           test.fixed_scale = jobs[k].scale;
-          real[k] += rs.compare_with_reference(shifted, test);
+          PrResult one = rs.compare_with_reference(shifted, test);
+          real[k] += one;
+          // The phase's own bin counts that one render.
+          const PrResult& bin = phase_counts[k][prune::phase_bin(b, px, py)];
+          auto diff = [](uint64_t x, uint64_t y) { return x > y ? x - y : y - x; };
+          worst[k] = std::max(worst[k], diff(bin.tp, one.tp) + diff(bin.fp, one.fp) + diff(bin.fn, one.fn));
+          covered[k] = std::max(covered[k], one.tp + one.fn);
         }
       }
     for (size_t k = 0; k < jobs.size(); ++k) {
       SCOPED_TRACE("size " + std::to_string(low) + " px, job " + std::to_string(k));
       const PrResult& l = lattice[k][b];
+      std::printf("%3u px, job %zu: per phase at most %llu pixels apart (of up to %llu covered)\n", low, k,
+                  (unsigned long long)worst[k], (unsigned long long)covered[k]);
+      EXPECT_LE(double(worst[k]), 0.01 * double(covered[k]) + 3.0) << "a phase bin is not its phase's render";
       if (stride > 1) {  // a sample of the phases: its fractions and Q, not its counts
         const double n = double(real[k].tp + real[k].fn), ln = double(l.tp + l.fn);
         std::printf("%3u px, %4u of %u phases, job %zu: lattice Q %.4f, renders Q %.4f, covered %.4f vs %.4f of a phase\n",

@@ -311,6 +311,8 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   t.s_far.assign(F_SAMPLES, 1.0f);
   t.q_far.assign(F_SAMPLES, 1.0f);
   t.q_inverse_far.assign(F_SAMPLES, 1.0f);
+  t.q_low.assign(S_SAMPLES, 1.0f);
+  t.q_low_far.assign(F_SAMPLES, 1.0f);
   m.bake.pr_tables = pr_tables_at_every_size(t);
   std::vector<TreeDesc> trees = {{0, 0.0f, 0.0f, 1.0f, 0.0f}, {0, 5.0f, 20.0f, 1.0f, 30.0f}};
   Scene s = single_model_scene(m, trees);
@@ -343,6 +345,8 @@ TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
   t.s_far = {10.0f, 40.0f, 80.0f};
   t.q_far.assign(F_SAMPLES, 0.3f);
   t.q_inverse_far.assign(F_SAMPLES, 0.2f);
+  t.q_low.assign(S_SAMPLES, 0.3f);
+  t.q_low_far.assign(F_SAMPLES, 0.1f);
   m.bake.pr_tables = pr_tables_at_every_size(t);
   Scene s = single_model_scene(m, {{0, 0.0f, 0.0f, 1.0f, 0.0f}});
   ASSERT_EQ(s.instances.size(), 1u);

@@ -132,6 +132,8 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
     st.s_far = distinct_values(F_SAMPLES, 20.0f, 200.0f, 0.71 + 0.01 * b);
     st.q_far = distinct_values(F_SAMPLES, -1.0f, 1.0f, 0.53 + 0.01 * b);
     st.q_inverse_far = distinct_values(F_SAMPLES, -0.9f, 0.95f, 0.59 + 0.01 * b);
+    st.q_low = distinct_values(S_SAMPLES, -0.5f, 0.9f, 0.61 + 0.01 * b);
+    st.q_low_far = distinct_values(F_SAMPLES, -0.5f, 0.9f, 0.83 + 0.01 * b);
     for (const auto* v : {&st.s_opt, &st.q_opt, &st.q_inverse, &st.lambda_opt}) {
       ASSERT_TRUE(all_distinct(*v));
       ASSERT_FALSE(monotonic(*v));
@@ -204,6 +206,8 @@ TEST(BakeIo, HullAndTablesRoundTrip) {
     expect_same_floats(tables->sizes[b].s_far, t.sizes[b].s_far, "s_far");
     expect_same_floats(tables->sizes[b].q_far, t.sizes[b].q_far, "q_far");
     expect_same_floats(tables->sizes[b].q_inverse_far, t.sizes[b].q_inverse_far, "q_inverse_far");
+    expect_same_floats(tables->sizes[b].q_low, t.sizes[b].q_low, "q_low");
+    expect_same_floats(tables->sizes[b].q_low_far, t.sizes[b].q_low_far, "q_low_far");
   }
   EXPECT_EQ(tables->priority, "combined");
   EXPECT_EQ(tables->views, 13);
@@ -257,6 +261,8 @@ const std::vector<uint8_t>& baked_glb() {
     st.s_far.assign(F_SAMPLES, 30.0f);
     st.q_far.assign(F_SAMPLES, 0.1f);
     st.q_inverse_far.assign(F_SAMPLES, 0.05f);
+    st.q_low.assign(S_SAMPLES, 0.4f);
+    st.q_low_far.assign(F_SAMPLES, 0.02f);
     PrTables t = pr_tables_at_every_size(st, 64.0f);
     t.priority = "combined";
     t.views = 2;
@@ -312,6 +318,8 @@ TEST(BakeIo, DerivedTableValuesAreChecked) {
                  "extras.forest.pr_tables.per_size[2].s_far");
   expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][1]["q_far"][0] = "x"; },
                  "extras.forest.pr_tables.per_size[1].q_far");
+  expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][0]["q_low"][20] = 2.0; },
+                 "extras.forest.pr_tables.per_size[0].q_low");
   expect_refused([](nlohmann::json& f) { f["pr_tables"].erase("lambda"); }, "extras.forest.pr_tables.lambda");
   // Measured tables out of range, as before.
   expect_refused([](nlohmann::json& f) { f["pr_tables"]["per_size"][4]["lambda_opt"][2] = 1.5; },
@@ -334,7 +342,8 @@ TEST(BakeIo, TablesOfAnOlderFormatAskForABake) {
   expect_refused([](nlohmann::json& f) {
     f["pr_tables"]["format"] = 2;
     f["pr_tables"].erase("lambda_far");
-    for (auto& s : f["pr_tables"]["per_size"]) s.erase("s_far"), s.erase("q_far"), s.erase("q_inverse_far");
+    for (auto& s : f["pr_tables"]["per_size"])
+      for (const char* k : {"s_far", "q_far", "q_inverse_far", "q_low", "q_low_far"}) s.erase(k);
   }, "extras.forest.pr_tables.format: expected 3");
 }
 

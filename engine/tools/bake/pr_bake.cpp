@@ -129,12 +129,29 @@ struct PrMeter {
   const PrBakeOptions& options;
   std::map<Point, PrSizes> sums;
   std::map<Point, std::array<PrSizes, 2>> folds;  // the same sums over each half of the views
+  std::map<Point, std::array<float, PR_SIZES>> low;  // low quantile of Q over views and phases
   PrBakeStats stats;
   size_t expected = 0, measured = 0;  // points, for the progress fraction
 };
 
 // Views [0, views/2) and the rest: both halves see both elevations (pr_views alternates them).
 uint32_t view_fold(uint32_t view, uint32_t views) { return views > 1 && view >= views / 2 ? 1 : 0; }
+
+// Q of every single render in one bake render: size 0 itself, and each sub-pixel phase of the
+// smaller sizes where anything is covered.
+void add_single_qualities(std::array<std::vector<float>, PR_SIZES>& q, const PrSizes& sizes, const PrPhases& phases) {
+  if (sizes[0].tp + sizes[0].fp + sizes[0].fn > 0) q[0].push_back(float(sizes[0].quality()));
+  for (uint32_t b = 1; b < PR_SIZES; ++b)
+    for (uint32_t k = ((1u << 2 * b) - 1) / 3; k < ((1u << 2 * (b + 1)) - 1) / 3; ++k)
+      if (phases[k].tp + phases[k].fp + phases[k].fn > 0) q[b].push_back(float(phases[k].quality()));
+}
+
+float low_quantile(std::vector<float>& q) {
+  if (q.empty()) return 1.0f;  // nothing covered at any phase: nothing to lose
+  auto at = q.begin() + std::ptrdiff_t(double(TARGET_LOW_QUANTILE) * double(q.size() - 1));
+  std::nth_element(q.begin(), at, q.end());
+  return *at;
+}
 
 // Measures the points not measured yet (duplicates once): all views of all points in one
 // submit (Renderer::compare_coverage).
@@ -147,14 +164,20 @@ void measure(PrMeter& m, std::vector<Point> points) {
   for (auto [l, s] : points)
     for (uint32_t v = 0; v < m.options.views; ++v) jobs.push_back({v, l, s});
   auto t0 = clock::now();
-  std::vector<PrSizes> r = m.renderer.compare_coverage(jobs);
+  std::vector<PrPhases> phases;
+  std::vector<PrSizes> r = m.renderer.compare_coverage(jobs, &phases);
   m.stats.compare_seconds += seconds_since(t0);
   ++m.stats.submits;
+  std::map<Point, std::array<std::vector<float>, PR_SIZES>> single;  // Q of each view (and phase)
   for (size_t i = 0; i < jobs.size(); ++i) {
-    PrSizes& sum = m.sums[{jobs[i].lambda, jobs[i].scale}];
-    PrSizes& fold = m.folds[{jobs[i].lambda, jobs[i].scale}][view_fold(jobs[i].view, m.options.views)];
+    const Point key{jobs[i].lambda, jobs[i].scale};
+    PrSizes& sum = m.sums[key];
+    PrSizes& fold = m.folds[key][view_fold(jobs[i].view, m.options.views)];
     for (uint32_t b = 0; b < PR_SIZES; ++b) sum[b] += r[i][b], fold[b] += r[i][b];
+    add_single_qualities(single[key], r[i], phases[i]);
   }
+  for (auto& [key, q] : single)
+    for (uint32_t b = 0; b < PR_SIZES; ++b) m.low[key][b] = low_quantile(q[b]);
   m.stats.renders += uint32_t(points.size()) * m.options.views;
   m.measured += points.size();
   if (m.options.progress)
@@ -251,6 +274,7 @@ void run_scale_searches(PrMeter& m, SamplePlan& plan) {
 struct ScaleChoice {
   float s = 1.0f;
   float q = 1.0f, q_inverse = 1.0f;
+  float q_low = 1.0f;  // at s
 };
 
 ScaleChoice choose_scale(const PrMeter& m, float l, uint32_t b) {
@@ -270,11 +294,13 @@ ScaleChoice choose_scale(const PrMeter& m, float l, uint32_t b) {
   }
   c.s = pooled.s;
   c.q = float(pooled.q);
-  if (m.options.views < 2) return c;
-  PrResult held = m.folds.at({l, half[0].s})[1][b];
-  held += m.folds.at({l, half[1].s})[0][b];
-  c.q = float(held.quality());
-  if (c.q <= c.q_inverse) c.s = 1.0f / l, c.q = c.q_inverse;
+  if (m.options.views >= 2) {
+    PrResult held = m.folds.at({l, half[0].s})[1][b];
+    held += m.folds.at({l, half[1].s})[0][b];
+    c.q = float(held.quality());
+    if (c.q <= c.q_inverse) c.s = 1.0f / l, c.q = c.q_inverse;
+  }
+  c.q_low = m.low.at({l, c.s})[b];
   return c;
 }
 
@@ -282,16 +308,18 @@ void fill_scale_tables(PrSizeTables& t, const PrMeter& m, const SamplePlan& plan
   t.s_opt.assign(S_SAMPLES, 1.0f);
   t.q_opt.assign(S_SAMPLES, 1.0f);
   t.q_inverse.assign(S_SAMPLES, 1.0f);
+  t.q_low.assign(S_SAMPLES, 1.0f);
   for (uint32_t i = 1; i < S_SAMPLES; ++i) {
     ScaleChoice c = choose_scale(m, plan.lambdas[i], b);
-    t.s_opt[i] = c.s, t.q_opt[i] = c.q, t.q_inverse[i] = c.q_inverse;
+    t.s_opt[i] = c.s, t.q_opt[i] = c.q, t.q_inverse[i] = c.q_inverse, t.q_low[i] = c.q_low;
   }
   t.s_far.assign(F_SAMPLES, 1.0f);
   t.q_far.assign(F_SAMPLES, 1.0f);
   t.q_inverse_far.assign(F_SAMPLES, 1.0f);
+  t.q_low_far.assign(F_SAMPLES, 1.0f);
   for (uint32_t f = 0; f < F_SAMPLES; ++f) {
     ScaleChoice c = choose_scale(m, plan.far[f], b);
-    t.s_far[f] = c.s, t.q_far[f] = c.q, t.q_inverse_far[f] = c.q_inverse;
+    t.s_far[f] = c.s, t.q_far[f] = c.q, t.q_inverse_far[f] = c.q_inverse, t.q_low_far[f] = c.q_low;
   }
   // s must not pop as λ changes: non-increasing in λ over the far and the regular samples,
   // exactly 1 at full detail, and λ = 0 (nothing drawn) borrows its neighbour's value.
@@ -304,6 +332,7 @@ void fill_scale_tables(PrSizeTables& t, const PrMeter& m, const SamplePlan& plan
   t.s_opt[S_SAMPLES - 1] = 1.0f;
   t.q_opt[0] = 0.0f;
   t.q_inverse[0] = 0.0f;
+  t.q_low[0] = 0.0f;
 }
 
 // λ_opt(d) at size b: the smallest λ whose optimal quality matches Cook's at λ_Cook(d)
