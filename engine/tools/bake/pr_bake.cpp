@@ -168,16 +168,19 @@ void measure(PrMeter& m, std::vector<Point> points) {
   std::vector<PrSizes> r = m.renderer.compare_coverage(jobs, &phases);
   m.stats.compare_seconds += seconds_since(t0);
   ++m.stats.submits;
-  std::map<Point, std::array<std::vector<float>, PR_SIZES>> single;  // Q of each view (and phase)
+  // Q of each view (and phase), per elevation (pr_views alternates two).
+  std::map<Point, std::array<std::array<std::vector<float>, PR_SIZES>, 2>> single;
   for (size_t i = 0; i < jobs.size(); ++i) {
     const Point key{jobs[i].lambda, jobs[i].scale};
     PrSizes& sum = m.sums[key];
     PrSizes& fold = m.folds[key][view_fold(jobs[i].view, m.options.views)];
     for (uint32_t b = 0; b < PR_SIZES; ++b) sum[b] += r[i][b], fold[b] += r[i][b];
-    add_single_qualities(single[key], r[i], phases[i]);
+    add_single_qualities(single[key][jobs[i].view % 2], r[i], phases[i]);
   }
+  // The lower of the two elevations' quantiles: trees seen from near the ground (frames'
+  // usual view) lose more than those seen from above, and a pooled quantile hid that.
   for (auto& [key, q] : single)
-    for (uint32_t b = 0; b < PR_SIZES; ++b) m.low[key][b] = low_quantile(q[b]);
+    for (uint32_t b = 0; b < PR_SIZES; ++b) m.low[key][b] = std::min(low_quantile(q[0][b]), low_quantile(q[1][b]));
   m.stats.renders += uint32_t(points.size()) * m.options.views;
   m.measured += points.size();
   if (m.options.progress)
