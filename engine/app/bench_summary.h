@@ -44,6 +44,7 @@ std::string tolerance_text();  // kEqualQualityTolerance as text
 struct TreePr {
   uint32_t frames = 0, min_trees = ~0u;
   double worst_mean = 1, worst_p10 = 1, mean = 0;
+  double p10 = 1;  // over all measured trees of all PR frames (the frames' own are 20-odd trees each)
 };
 TreePr tree_pr(const ModeSummary& m);
 std::string tree_pr_note(const ModeSummary& m, float target);  // a paragraph of summary.md ("" without)

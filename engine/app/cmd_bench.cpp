@@ -280,7 +280,7 @@ nlohmann::ordered_json mode_json(const ModeSummary& m, const ModeSummary* cook, 
                     {"triangles_per_cascade", m.shadow_triangles}};
   if (TreePr t = tree_pr(m); t.frames)
     e["tree_pr"] = {{"frames", t.frames}, {"min_trees_per_frame", t.min_trees}, {"mean_q", t.mean},
-                    {"worst_frame_mean_q", t.worst_mean}, {"worst_frame_p10_q", t.worst_p10}};
+                    {"worst_frame_mean_q", t.worst_mean}, {"worst_frame_p10_q", t.worst_p10}, {"p10_q", t.p10}};
   e["pr_frames"] = m.pr_frames;
   e["precision"] = m.precision;
   e["recall"] = m.recall;
