@@ -308,22 +308,17 @@ ScaleChoice choose_scale(const PrMeter& m, float l, uint32_t b) {
 }
 
 void fill_scale_tables(PrSizeTables& t, const PrMeter& m, const SamplePlan& plan, uint32_t b) {
-  t.s_opt.assign(S_SAMPLES, 1.0f);
-  t.q_opt.assign(S_SAMPLES, 1.0f);
-  t.q_inverse.assign(S_SAMPLES, 1.0f);
-  t.q_low.assign(S_SAMPLES, 1.0f);
-  for (uint32_t i = 1; i < S_SAMPLES; ++i) {
-    ScaleChoice c = choose_scale(m, plan.lambdas[i], b);
-    t.s_opt[i] = c.s, t.q_opt[i] = c.q, t.q_inverse[i] = c.q_inverse, t.q_low[i] = c.q_low;
-  }
-  t.s_far.assign(F_SAMPLES, 1.0f);
-  t.q_far.assign(F_SAMPLES, 1.0f);
-  t.q_inverse_far.assign(F_SAMPLES, 1.0f);
-  t.q_low_far.assign(F_SAMPLES, 1.0f);
-  for (uint32_t f = 0; f < F_SAMPLES; ++f) {
-    ScaleChoice c = choose_scale(m, plan.far[f], b);
-    t.s_far[f] = c.s, t.q_far[f] = c.q, t.q_inverse_far[f] = c.q_inverse, t.q_low_far[f] = c.q_low;
-  }
+  // s_opt, q_opt, q_inverse and q_low at `lambdas` (those before `first` stay 1).
+  auto fill = [&](const std::vector<float>& lambdas, size_t first, std::vector<float>& s, std::vector<float>& q,
+                  std::vector<float>& q_inverse, std::vector<float>& q_low) {
+    for (std::vector<float>* v : {&s, &q, &q_inverse, &q_low}) v->assign(lambdas.size(), 1.0f);
+    for (size_t i = first; i < lambdas.size(); ++i) {
+      ScaleChoice c = choose_scale(m, lambdas[i], b);
+      s[i] = c.s, q[i] = c.q, q_inverse[i] = c.q_inverse, q_low[i] = c.q_low;
+    }
+  };
+  fill(plan.lambdas, 1, t.s_opt, t.q_opt, t.q_inverse, t.q_low);
+  fill(plan.far, 0, t.s_far, t.q_far, t.q_inverse_far, t.q_low_far);
   // s must not pop as λ changes: non-increasing in λ over the far and the regular samples,
   // exactly 1 at full detail, and λ = 0 (nothing drawn) borrows its neighbour's value.
   std::vector<float> ascending(t.s_far.rbegin(), t.s_far.rend());
