@@ -45,8 +45,8 @@ float opt_area_scale(Model m, float lambda, float p) {
                          : mix(table_value(m, b0, TABLE_S_FAR, i - 1), table_value(m, b1, TABLE_S_FAR, i - 1), w);
   float s_far = mix(table_value(m, b0, TABLE_S_FAR, i), table_value(m, b1, TABLE_S_FAR, i), w);
   if (u <= float(F_SAMPLES)) return exp2(mix(log2(s_near), log2(s_far), u - float(i)));
-  float last = far_lambda(F_SAMPLES - 1);
-  return mix(1.0, last * s_far, lambda / last) / max(lambda, 1e-6);
+  float last = far_lambda(F_SAMPLES - 1), l = max(lambda, 1e-3);  // s ≤ 1000, as Cook's
+  return mix(1.0, last * s_far, l / last) / l;
 }
 
 // λ_opt(d, p), bilinear in the d table position and log2 p. Where Cook's λ is below the first
