@@ -1,7 +1,7 @@
 // Bake timing and the rendering-priority comparison of Neubert 2012 Table 7.4. Usage:
 //   bake_bench [--model SPECIES.toml] [--old-model SPECIES.toml] [--compare SPECIES.toml]...
 //              [--views N] [--resolution PX] [--out DIR] [--skip-time] [--skip-compare]
-//              [--orders random,density,...] [--tables]
+//              [--orders random,density,...] [--tables] [--searched MASK]
 // 1. Bake time of --model (default bench/species/mig_a_50k.toml, ~62 K leaves) by stage:
 //    hull, priority (combined), PR references, PR pruned renders + counts (+ readback); the
 //    PR measurement twice in one run: the tables at every projected size (--resolution, default
@@ -17,6 +17,7 @@
 //    order's); --tables: print each order's s_opt, q_opt and q_inverse per λ and size;
 //    --variants: also the paper's orders unstratified, random stratified, and greedy density.
 //    Each order's prefix unevenness is printed too (priority_stratify.h: why it matters).
+// --searched: the sizes whose s is searched in 1. and 2. (PrBakeOptions::searched_sizes).
 // Times are wall clock and process CPU (all threads), single run: compare within one run.
 #include <chrono>
 #include <cstdio>
@@ -55,6 +56,7 @@ struct Options {
   std::string old_model = kSource + "/scenes/species/broadleaf.toml";
   std::vector<std::string> compare;
   uint32_t views = 6, resolution = 512, single_size = 256;
+  uint32_t searched_sizes = kSearchedSizes;  // PrBakeOptions::searched_sizes, bit b for size b
   std::string out = kSource + "/bench/results";
   bool time = true, table = true, variants = false, print_tables = false;
   std::vector<Priority> orders{Priority::random, Priority::density, Priority::orientation, Priority::combined,
@@ -86,6 +88,7 @@ void bake_time(vk::Context& ctx, const Options& o) {
   PrBakeOptions po;
   po.views = o.views;
   po.size0 = o.resolution;
+  po.searched_sizes = o.searched_sizes;
   PrMeasurement pm = measure_pr_tables(ctx, m, po);
   double pr_s = t.wall_s(), pr_cpu = t.cpu_s();
   const PrBakeStats& st = pm.stats;
@@ -120,6 +123,7 @@ void old_vs_new(vk::Context& ctx, const Options& o) {
   PrBakeOptions po;
   po.views = o.views;
   po.size0 = o.resolution;
+  po.searched_sizes = o.searched_sizes;
   PrBakeOptions every = po;
   every.search_scale = false;
   Timer t;
@@ -348,6 +352,7 @@ int main(int argc, char** argv) {
     else if (a == "--views") o.views = uint32_t(std::stoul(value()));
     else if (a == "--resolution") o.resolution = uint32_t(std::stoul(value()));
     else if (a == "--out") o.out = value();
+    else if (a == "--searched") o.searched_sizes = uint32_t(std::stoul(value(), nullptr, 0));
     else if (a == "--skip-time") o.time = false;
     else if (a == "--skip-compare") o.table = false;
     else if (a == "--variants") o.variants = true;

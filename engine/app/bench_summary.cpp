@@ -125,28 +125,22 @@ std::string trees_csv(const ModeSummary& m) {
   return o.str().empty() ? "" : "frame,time_s,size_px,q\n" + o.str();
 }
 
-// The 10th percentile as the bench reports it: the value at rank ⌊0.1 (n − 1)⌋ (nearest rank, low).
-double tenth_percentile(std::vector<float> q) {
-  std::sort(q.begin(), q.end());
-  return q.empty() ? 1.0 : q[size_t(std::floor(0.1 * double(q.size() - 1)))];
-}
-
+// 10th percentiles by the rule of the bake's q_low (pr_tables.h low_quantile).
 TreePr tree_pr(const ModeSummary& m) {
   TreePr t;
   std::vector<float> all;
   for (const BenchFrame& f : m.frames) {
     if (f.tree_q.empty()) continue;
-    std::vector<float> q = f.tree_q;
-    std::sort(q.begin(), q.end());
+    const std::vector<float>& q = f.tree_q;
     double mean = 0;
     for (float x : q) mean += x / double(q.size());
-    double p10 = tenth_percentile(q);
+    double p10 = low_quantile(q, 0.1);
     all.insert(all.end(), q.begin(), q.end());
     t.worst_mean = std::min(t.worst_mean, mean), t.worst_p10 = std::min(t.worst_p10, p10);
     t.mean += mean, t.min_trees = std::min<uint32_t>(t.min_trees, uint32_t(q.size())), ++t.frames;
   }
   if (t.frames) t.mean /= t.frames;
-  t.p10 = tenth_percentile(all);
+  t.p10 = low_quantile(std::move(all), 0.1);
   return t;
 }
 

@@ -29,6 +29,13 @@ float pr_lambda_cook(uint32_t j) { return prune::lambda_cook(prune::d_sample(j))
 float pr_lambda_far(uint32_t f) { return prune::far_lambda(f); }
 float pr_size(float size0, uint32_t b) { return std::ldexp(size0, -int(b)); }
 
+float low_quantile(std::vector<float> q, double fraction) {
+  if (q.empty()) return 1.0f;
+  auto at = q.begin() + std::ptrdiff_t(std::clamp(fraction, 0.0, 1.0) * double(q.size() - 1));
+  std::nth_element(q.begin(), at, q.end());
+  return *at;
+}
+
 PrTables pr_tables_at_every_size(const PrSizeTables& one, float size0) {
   PrTables t;
   t.size0 = size0;

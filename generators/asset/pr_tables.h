@@ -56,6 +56,11 @@ float pr_lambda_cook(uint32_t j);  // Cook's λ at pr_d(j): (1 − d)²
 float pr_lambda_far(uint32_t f);   // far λ sample f < F_SAMPLES: pr_lambda(1) / 2^(f+1)
 float pr_size(float size0, uint32_t b);  // projected size of table size b < PR_SIZES: size0 / 2^b
 
+// The low quantile of single-render Q values that q_low holds, and that the bench's per-tree
+// figures are judged by: the value at rank ⌊fraction · (n − 1)⌋ of the sorted values (no
+// interpolation between two renders' Q); 1 for none (nothing covered: nothing to lose).
+float low_quantile(std::vector<float> q, double fraction = TARGET_LOW_QUANTILE);
+
 // Tables holding `one` at every size (hand-made tables of tests and tools).
 PrTables pr_tables_at_every_size(const PrSizeTables& one, float size0 = 512.0f);
 

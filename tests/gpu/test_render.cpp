@@ -333,9 +333,10 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
 
 TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
   // Below λ = 1/20 opt draws Cook's λ with the tables' far s (tree_detail.glsl opt_area_scale):
-  // log s interpolated in log λ between the far samples, and past the last one a blend toward
-  // Cook's 1/λ. The opt render must be the fixed render at that (λ, s), and differ from the
-  // fixed render at the s a straight line between the samples would give.
+  // log s interpolated in log λ between the far samples, past the last one a blend toward
+  // Cook's 1/λ, and never more area than the crown's n leaves. The opt render must be the
+  // fixed render at that (λ, s), and differ from the fixed render at the s a straight line
+  // between the samples (or no bound) would give.
   TreeModel m = broadleaf();
   PrSizeTables t;
   t.s_opt.assign(S_SAMPLES, 5.0f);
@@ -357,20 +358,29 @@ TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
   s.desc.camera.target = centre;
   const float distance = glm::distance(s.desc.camera.position, centre);
   Renderer r(ctx_, s, 160, 120, 1);
-  // u = log2(1/20 / λ): 1.5 lies between far samples 0 and 1, 3.5 past the last.
-  for (float u : {1.5f, 3.5f}) {
+  // u = log2(1/20 / λ): 1.5 lies between far samples 0 and 1, 3.5 past the last; and a λ that
+  // draws one leaf, whose area the crown's n leaves bound (s = n, not the blend's ≈ 2n).
+  const uint32_t n = uint32_t(m.leaves.size());
+  const float one_leaf_u = std::log2(1.0f / 20.0f * 2.0f * float(n));
+  for (float u : {1.5f, 3.5f, one_leaf_u}) {
     SCOPED_TRACE("u = " + std::to_string(u));
     const float lambda = 1.0f / (20.0f * std::exp2(u));
     const float d = 1.0f - std::sqrt(lambda);
     s.desc.prune_distance = distance / d;  // read by every frame (the renderer holds the scene)
     float expected = 0, straight = 0;
+    const float last = prune::far_lambda(F_SAMPLES - 1);
+    const float blend = (1.0f + (last * 80.0f - 1.0f) * lambda / last) / lambda;
     if (u < 2.0f) {
       expected = std::exp2(0.5f * (std::log2(10.0f) + std::log2(40.0f)));  // 20
       straight = 25.0f;
-    } else {
-      const float last = prune::far_lambda(F_SAMPLES - 1);
-      expected = (1.0f + (last * 80.0f - 1.0f) * lambda / last) / lambda;
+    } else if (u < 4.0f) {
+      expected = blend;
       straight = 1.0f / lambda;  // Cook's s, a straight line to λ = 0 of the area fraction
+    } else {
+      ASSERT_EQ(prune::leaf_prefix(prune::lambda_cook(d), n), 1u);
+      ASSERT_GT(blend, 1.5f * float(n));
+      expected = float(n);
+      straight = blend;  // unbounded: one leaf larger than the crown
     }
     FrameSettings opt, fixed, wrong;
     opt.prune_mode = PruneMode::opt;
@@ -383,12 +393,12 @@ TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
     FrameStats so = r.render(s.desc.camera, &a, opt);
     r.render(s.desc.camera, &b, fixed);
     r.render(s.desc.camera, &c, wrong);
-    EXPECT_EQ(so.leaves_drawn, prune::leaf_prefix(fixed.fixed_lambda, uint32_t(m.leaves.size())));
-    EXPECT_GT(so.leaves_drawn, 3u);
+    EXPECT_EQ(so.leaves_drawn, prune::leaf_prefix(fixed.fixed_lambda, n));
+    EXPECT_GT(so.leaves_drawn, u < 4.0f ? 3u : 0u);
     auto differing = [](const FrameImage& x, const FrameImage& y) {
-      size_t n = 0;
-      for (size_t i = 0; i < x.rgba.size(); i += 4) n += (x.rgba[i] > 127) != (y.rgba[i] > 127);
-      return n;
+      size_t count = 0;
+      for (size_t i = 0; i < x.rgba.size(); i += 4) count += (x.rgba[i] > 127) != (y.rgba[i] > 127);
+      return count;
     };
     EXPECT_LE(differing(a, b), 4u);
     EXPECT_GT(differing(a, c), 40u);

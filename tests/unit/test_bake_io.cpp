@@ -381,3 +381,17 @@ TEST(BakeIo, BakeKeysInMetaAreAProgrammingError) {
   m.meta["hull_iso"] = 0.05;
   EXPECT_THROW(encode_glb(m), std::logic_error);
 }
+
+TEST(PrTablesMath, LowQuantileTakesTheLowNearestRank) {
+  // q_low and the bench's per-tree 10th percentile: rank ⌊0.1 (n − 1)⌋ of the sorted values,
+  // one render's own Q, never a mix of two.
+  std::vector<float> q(20);
+  std::iota(q.begin(), q.end(), 1.0f);
+  std::reverse(q.begin(), q.end());
+  EXPECT_EQ(low_quantile(q, 0.1), 2.0f);  // rank 1 of 0 … 19
+  EXPECT_EQ(low_quantile(q), 2.0f) << "TARGET_LOW_QUANTILE is 0.1";
+  EXPECT_EQ(low_quantile(q, 0.0), 1.0f);
+  EXPECT_EQ(low_quantile(q, 1.0), 20.0f);
+  EXPECT_EQ(low_quantile({0.5f, 0.9f}, 0.5), 0.5f);
+  EXPECT_EQ(low_quantile({}, 0.1), 1.0f) << "nothing covered: nothing lost";
+}

@@ -142,15 +142,8 @@ uint32_t view_fold(uint32_t view, uint32_t views) { return views > 1 && view >= 
 void add_single_qualities(std::array<std::vector<float>, PR_SIZES>& q, const PrSizes& sizes, const PrPhases& phases) {
   if (sizes[0].tp + sizes[0].fp + sizes[0].fn > 0) q[0].push_back(float(sizes[0].quality()));
   for (uint32_t b = 1; b < PR_SIZES; ++b)
-    for (uint32_t k = ((1u << 2 * b) - 1) / 3; k < ((1u << 2 * (b + 1)) - 1) / 3; ++k)
+    for (uint32_t k = prune::phase_bin(b, 0, 0); k < prune::phase_bin(b + 1, 0, 0); ++k)
       if (phases[k].tp + phases[k].fp + phases[k].fn > 0) q[b].push_back(float(phases[k].quality()));
-}
-
-float low_quantile(std::vector<float>& q) {
-  if (q.empty()) return 1.0f;  // nothing covered at any phase: nothing to lose
-  auto at = q.begin() + std::ptrdiff_t(double(TARGET_LOW_QUANTILE) * double(q.size() - 1));
-  std::nth_element(q.begin(), at, q.end());
-  return *at;
 }
 
 // Measures the points not measured yet (duplicates once): all views of all points in one
@@ -180,7 +173,7 @@ void measure(PrMeter& m, std::vector<Point> points) {
   // The lower of the two elevations' quantiles: trees seen from near the ground (frames'
   // usual view) lose more than those seen from above, and a pooled quantile hid that.
   for (auto& [key, q] : single)
-    for (uint32_t b = 0; b < PR_SIZES; ++b) m.low[key][b] = std::min(low_quantile(q[0][b]), low_quantile(q[1][b]));
+    for (uint32_t b = 0; b < PR_SIZES; ++b) m.low[key][b] = std::min(low_quantile(std::move(q[0][b])), low_quantile(std::move(q[1][b])));
   m.stats.renders += uint32_t(points.size()) * m.options.views;
   m.measured += points.size();
   if (m.options.progress)
@@ -219,7 +212,7 @@ SamplePlan plan_samples(const PrBakeOptions& options) {
     if (plan.cook[j] > 0.0f) plan.first.push_back({plan.cook[j], 1.0f / plan.cook[j]});
   }
   for (uint32_t f = 0; f < F_SAMPLES; ++f) plan.far.push_back(pr_lambda_far(f));
-  const uint32_t searched = std::clamp(options.searched_sizes, 1u, uint32_t(PR_SIZES));
+  const uint32_t searched = options.searched_sizes & ((1u << PR_SIZES) - 1u);
   std::vector<float> searched_lambdas(plan.lambdas.begin() + 1, plan.lambdas.end());
   searched_lambdas.insert(searched_lambdas.end(), plan.far.begin(), plan.far.end());
   for (float lambda : searched_lambdas) {
@@ -230,7 +223,8 @@ SamplePlan plan_samples(const PrBakeOptions& options) {
     // The sizes' searches share most probes (each render counts every size).
     plan.expected += options.search_scale ? 3 * size_t(std::ceil(std::log2(double(ss.s.size())))) : ss.s.size();
     if (options.search_scale)
-      for (uint32_t b = 0; b < searched; ++b) {
+      for (uint32_t b = 0; b < PR_SIZES; ++b) {
+        if ((searched & (1u << b)) == 0) continue;
         plan.searches.push_back(ss);
         plan.search_size.push_back(b);
       }

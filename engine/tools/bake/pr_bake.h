@@ -10,6 +10,9 @@
 
 namespace forest {
 
+// The sizes whose s is searched by default (PrBakeOptions::searched_sizes), bit b for size b.
+inline constexpr uint32_t kSearchedSizes = (1u << PR_SIZES) - 1u;
+
 struct PrBakeOptions {
   // Projected size of the tables' size 0, in pixels across the bounding sphere; the tables
   // hold it and PR_SIZES − 1 halvings, all measured from the same renders (lattices).
@@ -20,9 +23,10 @@ struct PrBakeOptions {
   // recall for precision): about half the renders of trying every grid value. false: every
   // grid value (the reference the search is tested against).
   bool search_scale = true;
-  // Sizes whose s_opt is searched (the first ones). The others take the best s among the
-  // points measured for these: 1 is the single-size bake of old, for comparisons.
-  uint32_t searched_sizes = PR_SIZES;
+  // Sizes whose s_opt is searched, bit b for size b. The others take the best s among the
+  // points measured for these (every render counts every size): 1 is the single-size bake of
+  // old, for comparisons.
+  uint32_t searched_sizes = kSearchedSizes;
   std::function<void(double)> progress;  // fraction done, for a progress bar
 };
 
