@@ -331,13 +331,72 @@ TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
   EXPECT_EQ(rh.render(half.desc.camera, nullptr, opt).leaves_drawn, 2 * prune::leaf_prefix(0.5f, uint32_t(m.leaves.size())));
 }
 
+namespace {
+
+// One far check of OptFarLeafAreaFollowsTheFarSamples: at u = log2(1/20 / λ), opt's render is
+// the fixed render at (λ, the expected s) and differs from the fixed render at the s a wrong
+// rule would give.
+void check_far_scale(vk::Context& ctx, const TreeModel& m, float u) {
+  SCOPED_TRACE("n = " + std::to_string(m.leaves.size()) + ", u = " + std::to_string(u));
+  Scene s = single_model_scene(m, {{0, 0.0f, 0.0f, 1.0f, 0.0f}});
+  ASSERT_EQ(s.instances.size(), 1u);
+  const gpu::Instance& inst = s.instances[0];  // yaw 0, scale 1: the sphere shifted to the tree
+  ASSERT_FLOAT_EQ(inst.yaw_cos_sin.x, 1.0f);
+  const glm::vec3 centre = glm::vec3(inst.position_scale) + glm::vec3(m.bounding_sphere) * inst.position_scale.w;
+  s.desc.camera.position = centre + glm::vec3(0.0f, 2.0f, -4.0f * m.bounding_sphere.w);
+  s.desc.camera.target = centre;
+  const float distance = glm::distance(s.desc.camera.position, centre);
+  const float lambda = 1.0f / (20.0f * std::exp2(u));
+  const float d = 1.0f - std::sqrt(lambda);
+  s.desc.prune_distance = distance / d;
+  Renderer r(ctx, s, 160, 120, 1);
+  const uint32_t n = uint32_t(m.leaves.size());
+  float expected = 0, straight = 0;
+  const float last = prune::far_lambda(F_SAMPLES - 1);
+  auto blend_at = [&](float l) { return (1.0f + (last * 80.0f - 1.0f) * l / last) / l; };
+  if (u < 2.0f) {
+    expected = std::exp2(0.5f * (std::log2(10.0f) + std::log2(40.0f)));  // 20
+    straight = 25.0f;
+  } else if (u < 4.0f) {
+    expected = blend_at(lambda);
+    straight = 1.0f / lambda;  // Cook's s, a straight line to λ = 0 of the area fraction
+  } else {
+    // One leaf: Cook's clamp λ ≥ 10⁻³ and the crown's n / max(λn, 1) = n, whichever is
+    // smaller; the wrong rule drops the one that binds.
+    ASSERT_EQ(prune::leaf_prefix(prune::lambda_cook(d), n), 1u);
+    const float clamped = blend_at(std::max(lambda, 1e-3f));
+    expected = std::min(clamped, float(n));
+    straight = clamped > float(n) ? clamped : std::min(blend_at(lambda), float(n));
+    ASSERT_GT(straight, 1.5f * expected);
+  }
+  FrameSettings opt, fixed, wrong;
+  opt.prune_mode = PruneMode::opt;
+  fixed.prune_mode = wrong.prune_mode = PruneMode::fixed;
+  fixed.fixed_lambda = wrong.fixed_lambda = prune::lambda_cook(d);
+  fixed.fixed_scale = expected;
+  wrong.fixed_scale = straight;
+  opt.mask = fixed.mask = wrong.mask = true;
+  FrameImage a, b, c;
+  FrameStats so = r.render(s.desc.camera, &a, opt);
+  r.render(s.desc.camera, &b, fixed);
+  r.render(s.desc.camera, &c, wrong);
+  EXPECT_EQ(so.leaves_drawn, prune::leaf_prefix(fixed.fixed_lambda, n));
+  EXPECT_GT(so.leaves_drawn, u < 4.0f ? 3u : 0u);
+  auto differing = [](const FrameImage& x, const FrameImage& y) {
+    size_t count = 0;
+    for (size_t i = 0; i < x.rgba.size(); i += 4) count += (x.rgba[i] > 127) != (y.rgba[i] > 127);
+    return count;
+  };
+  EXPECT_LE(differing(a, b), 4u);
+  EXPECT_GT(differing(a, c), 40u);
+}
+
+}  // namespace
+
 TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
   // Below λ = 1/20 opt draws Cook's λ with the tables' far s (tree_detail.glsl opt_area_scale):
   // log s interpolated in log λ between the far samples, past the last one a blend toward
-  // Cook's 1/λ, and never more area than the crown's n leaves. The opt render must be the
-  // fixed render at that (λ, s), and differ from the fixed render at the s a straight line
-  // between the samples (or no bound) would give.
-  TreeModel m = broadleaf();
+  // Cook's 1/λ (λ clamped at 10⁻³), and never more area than the crown's n leaves.
   PrSizeTables t;
   t.s_opt.assign(S_SAMPLES, 5.0f);
   t.q_opt.assign(S_SAMPLES, 0.5f);
@@ -348,59 +407,15 @@ TEST_F(GpuTest, OptFarLeafAreaFollowsTheFarSamples) {
   t.q_inverse_far.assign(F_SAMPLES, 0.2f);
   t.q_low.assign(S_SAMPLES, 0.3f);
   t.q_low_far.assign(F_SAMPLES, 0.1f);
+  TreeModel m = broadleaf();
   m.bake.pr_tables = pr_tables_at_every_size(t);
-  Scene s = single_model_scene(m, {{0, 0.0f, 0.0f, 1.0f, 0.0f}});
-  ASSERT_EQ(s.instances.size(), 1u);
-  const gpu::Instance& inst = s.instances[0];  // yaw 0, scale 1: the sphere shifted to the tree
-  ASSERT_FLOAT_EQ(inst.yaw_cos_sin.x, 1.0f);
-  const glm::vec3 centre = glm::vec3(inst.position_scale) + glm::vec3(m.bounding_sphere) * inst.position_scale.w;
-  s.desc.camera.position = centre + glm::vec3(0.0f, 2.0f, -4.0f * m.bounding_sphere.w);
-  s.desc.camera.target = centre;
-  const float distance = glm::distance(s.desc.camera.position, centre);
-  Renderer r(ctx_, s, 160, 120, 1);
-  // u = log2(1/20 / λ): 1.5 lies between far samples 0 and 1, 3.5 past the last; and a λ that
-  // draws one leaf, whose area the crown's n leaves bound (s = n, not the blend's ≈ 2n).
-  const uint32_t n = uint32_t(m.leaves.size());
-  const float one_leaf_u = std::log2(1.0f / 20.0f * 2.0f * float(n));
-  for (float u : {1.5f, 3.5f, one_leaf_u}) {
-    SCOPED_TRACE("u = " + std::to_string(u));
-    const float lambda = 1.0f / (20.0f * std::exp2(u));
-    const float d = 1.0f - std::sqrt(lambda);
-    s.desc.prune_distance = distance / d;  // read by every frame (the renderer holds the scene)
-    float expected = 0, straight = 0;
-    const float last = prune::far_lambda(F_SAMPLES - 1);
-    const float blend = (1.0f + (last * 80.0f - 1.0f) * lambda / last) / lambda;
-    if (u < 2.0f) {
-      expected = std::exp2(0.5f * (std::log2(10.0f) + std::log2(40.0f)));  // 20
-      straight = 25.0f;
-    } else if (u < 4.0f) {
-      expected = blend;
-      straight = 1.0f / lambda;  // Cook's s, a straight line to λ = 0 of the area fraction
-    } else {
-      ASSERT_EQ(prune::leaf_prefix(prune::lambda_cook(d), n), 1u);
-      ASSERT_GT(blend, 1.5f * float(n));
-      expected = float(n);
-      straight = blend;  // unbounded: one leaf larger than the crown
-    }
-    FrameSettings opt, fixed, wrong;
-    opt.prune_mode = PruneMode::opt;
-    fixed.prune_mode = wrong.prune_mode = PruneMode::fixed;
-    fixed.fixed_lambda = wrong.fixed_lambda = prune::lambda_cook(d);
-    fixed.fixed_scale = expected;
-    wrong.fixed_scale = straight;
-    opt.mask = fixed.mask = wrong.mask = true;
-    FrameImage a, b, c;
-    FrameStats so = r.render(s.desc.camera, &a, opt);
-    r.render(s.desc.camera, &b, fixed);
-    r.render(s.desc.camera, &c, wrong);
-    EXPECT_EQ(so.leaves_drawn, prune::leaf_prefix(fixed.fixed_lambda, n));
-    EXPECT_GT(so.leaves_drawn, u < 4.0f ? 3u : 0u);
-    auto differing = [](const FrameImage& x, const FrameImage& y) {
-      size_t count = 0;
-      for (size_t i = 0; i < x.rgba.size(); i += 4) count += (x.rgba[i] > 127) != (y.rgba[i] > 127);
-      return count;
-    };
-    EXPECT_LE(differing(a, b), 4u);
-    EXPECT_GT(differing(a, c), 40u);
-  }
+  const float n = float(m.leaves.size());
+  ASSERT_GT(n, 2000.0f);  // past the last sample, one leaf: the clamp binds before n does
+  // u = log2(1/20 / λ): 1.5 lies between far samples 0 and 1, 3.5 past the last, and λ = 1/(2n)
+  // draws one leaf.
+  for (float u : {1.5f, 3.5f, std::log2(2.0f * n / 20.0f)}) check_far_scale(ctx_, m, u);
+  // Its first 300 leaves, 4× as large (visible at one leaf): there n binds before the clamp.
+  m.leaves.resize(300);
+  for (LeafPlacement& leaf : m.leaves) leaf.scale *= 4.0f;
+  check_far_scale(ctx_, m, std::log2(2.0f * 300.0f / 20.0f));
 }
