@@ -68,3 +68,27 @@ TEST(Plot, WritePlotDrawsTheTitleInsideTheFigure) {
   EXPECT_LE(inked_rows, 14) << "the title was not drawn at its fitted size";
   std::filesystem::remove_all(dir);
 }
+
+// The y label (top left, starting left of the axes) and the title share no row: a long
+// y label once ran into the title's first letters (saved.png, "saved (%)").
+TEST(Plot, TitleAndYLabelDoNotOverlap) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "forest_test_plot_label";
+  std::filesystem::create_directories(dir);
+  Plot plot;
+  plot.width = 600;
+  plot.height = 300;
+  plot.series.push_back({"a", {{0.0f, 0.0f}, {1.0f, 1.0f}}});
+  plot.title = "leaves saved against Cook per frame";
+  plot.y_label = "saved (%) and more";
+  write_plot(plot, dir / "label.png");
+  FrameImage image = read_image(dir / "label.png");
+  std::filesystem::remove_all(dir);
+  int title_last = -1, label_first = -1;
+  for (uint32_t y = 0; y < 48; ++y) {
+    if (dark_pixels(image, 200, 500, y, y + 1) > 0) title_last = int(y);  // the title alone
+    if (label_first < 0 && dark_pixels(image, 8, 70, y, y + 1) > 0) label_first = int(y);  // the label alone
+  }
+  ASSERT_GE(title_last, 0) << "no title drawn";
+  ASSERT_GE(label_first, 0) << "no y label drawn";
+  EXPECT_LT(title_last, label_first);
+}

@@ -69,9 +69,10 @@ void write_plot(const Plot& plot, const std::filesystem::path& path) {
   }
   OIIO::ImageBufAlgo::render_box(img, x0, y0, x1, y1, black);
   FittedText title = fit_text(plot.title, 20, plot.width - x0 - 8);
-  OIIO::ImageBufAlgo::render_text(img, x0, 30, title.text, title.size, kFont, black);
+  // The title above the y label's rows: the label starts left of x0 and ran into the title.
+  OIIO::ImageBufAlgo::render_text(img, x0, 22, title.text, title.size, kFont, black);
   OIIO::ImageBufAlgo::render_text(img, (x0 + x1) / 2 - 40, plot.height - 18, plot.x_label, 16, kFont, black);
-  OIIO::ImageBufAlgo::render_text(img, 8, y0 - 12, plot.y_label, 16, kFont, black);
+  OIIO::ImageBufAlgo::render_text(img, 8, y0 - 6, plot.y_label, 16, kFont, black);
 
   // Points outside the axes are drawn on the border (OIIO's drawing does not clip).
   auto inside = [&](glm::vec2 p) {
