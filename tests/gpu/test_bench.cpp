@@ -40,6 +40,10 @@ TEST_F(BenchTest, PathPlaysDeterministicallyAndPrunes) {
     std::vector<BenchFrame> a = play_bench_path(ctx_, scene, path, mode, o);
     std::vector<BenchFrame> b = play_bench_path(ctx_, scene, path, mode, o);
     ASSERT_EQ(a.size(), 3u);
+    // The warm-up draw before the first recorded frame leaves occlusion no history: that
+    // frame is a cut and saves nothing.
+    EXPECT_EQ(a[0].stats.camera_cut, mode.occlusion);
+    EXPECT_EQ(a[0].stats.leaves_saved, 0u);
     for (size_t i = 0; i < a.size(); ++i) {
       EXPECT_EQ(a[i].stats.leaves_drawn, b[i].stats.leaves_drawn) << i;
       EXPECT_EQ(a[i].tree_triangles, b[i].tree_triangles) << i;
