@@ -19,6 +19,16 @@ int dark_pixels(const FrameImage& image, uint32_t x0, uint32_t x1, uint32_t y0, 
   return n;
 }
 
+// `plot` as write_plot draws it, read back from a PNG in a folder of its own.
+FrameImage written(const Plot& plot, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("forest_test_plot_" + name);
+  std::filesystem::create_directories(dir);
+  write_plot(plot, dir / "plot.png");
+  FrameImage image = read_image(dir / "plot.png");
+  std::filesystem::remove_all(dir);
+  return image;
+}
+
 }  // namespace
 
 // A title is drawn at 20 px when it fits, smaller when it does not, and cut (whole UTF-8
@@ -51,38 +61,30 @@ TEST(Plot, LongTitlesShrinkThenAreCut) {
 
 // write_plot draws the fitted title: something in the title row, nothing at the right edge.
 TEST(Plot, WritePlotDrawsTheTitleInsideTheFigure) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "forest_test_plot";
-  std::filesystem::create_directories(dir);
   Plot plot;
   plot.width = 500;
   plot.height = 300;
   plot.series.push_back({"a", {{0.0f, 0.0f}, {1.0f, 1.0f}}});
   for (int i = 0; i < 60; ++i) plot.title += "tree triangles ";
-  write_plot(plot, dir / "long.png");
-  FrameImage image = read_image(dir / "long.png");
+  FrameImage image = written(plot, "long");
   ASSERT_EQ(image.width, 500u);
   EXPECT_GT(dark_pixels(image, 80, 200, 0, 40), 0) << "no title drawn";
   EXPECT_EQ(dark_pixels(image, 494, 500, 0, 40), 0) << "the title runs off the right edge";
   int inked_rows = 0;  // 12 px text spans about 12 rows ("g" included), 20 px text about 19
   for (uint32_t y = 0; y < 44; ++y) inked_rows += dark_pixels(image, 80, 500, y, y + 1) > 0;
   EXPECT_LE(inked_rows, 14) << "the title was not drawn at its fitted size";
-  std::filesystem::remove_all(dir);
 }
 
 // The y label (top left, starting left of the axes) and the title share no row: a long
 // y label once ran into the title's first letters (saved.png, "saved (%)").
 TEST(Plot, TitleAndYLabelDoNotOverlap) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "forest_test_plot_label";
-  std::filesystem::create_directories(dir);
   Plot plot;
   plot.width = 600;
   plot.height = 300;
   plot.series.push_back({"a", {{0.0f, 0.0f}, {1.0f, 1.0f}}});
   plot.title = "leaves saved against Cook per frame";
   plot.y_label = "saved (%) and more";
-  write_plot(plot, dir / "label.png");
-  FrameImage image = read_image(dir / "label.png");
-  std::filesystem::remove_all(dir);
+  FrameImage image = written(plot, "label");
   int title_last = -1, label_first = -1;
   for (uint32_t y = 0; y < 48; ++y) {
     if (dark_pixels(image, 200, 500, y, y + 1) > 0) title_last = int(y);  // the title alone
