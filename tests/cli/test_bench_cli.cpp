@@ -76,7 +76,7 @@ TEST_F(BenchCliTest, BadInputIsOneLineExitTwoNothingWritten) {
 TEST_F(BenchCliTest, WritesCsvJsonAndPlotsAgainstCook) {
   // --out names a folder that does not exist yet: the bench makes it.
   const fs::path out = dir_ / "made" / "here";
-  ASSERT_EQ(run("'" + scene().string() + "' --modes full,cook,opt --pr-every 1 --probe-instances 2 --out '" + out.string() + "'"),
+  ASSERT_EQ(run("'" + scene().string() + "' --modes full,cook,opt --pr-every 1 --tree-pr 2 --probe-instances 2 --out '" + out.string() + "'"),
             0)
       << err_;
   for (const char* f : {"summary.json", "frames_full.csv", "frames_cook.csv", "frames_opt.csv", "triangles.png",
@@ -98,4 +98,10 @@ TEST_F(BenchCliTest, WritesCsvJsonAndPlotsAgainstCook) {
   EXPECT_LT(m["opt"]["tree_triangles"].get<double>(), m["full"]["tree_triangles"].get<double>());
   EXPECT_GT(m["opt"]["q"].get<double>(), 0.5);
   EXPECT_LE(m["opt"]["q"].get<double>(), 1.0);
+  // --tree-pr: the first mode is played once unrecorded first (cmd_bench.cpp), and what is
+  // recorded is one pass: 3 frames, each tree alone at full detail exactly its reference.
+  EXPECT_EQ(lines(slurp(out / "frames_full.csv")), 4u);
+  EXPECT_EQ(m["full"]["tree_pr"]["frames"], 3);
+  EXPECT_DOUBLE_EQ(m["full"]["tree_pr"]["mean_q"].get<double>(), 1.0);
+  EXPECT_EQ(m["opt"]["tree_pr"]["frames"], 3);
 }
