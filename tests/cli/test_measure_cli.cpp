@@ -51,7 +51,7 @@ TEST_F(CliMeasure, PresetGivesEveryMetricAndTheSameJson) {
                  path("masks"));
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* key : {"leaves", "height_m", "crown_width_m", "crown_width_over_height", "clear_bole_over_height",
-                          "trunk_fraction", "single_leader", "coverage_az000", "coverage_az090", "coverage_az180",
+                          "trunk_fraction", "single_leader", "lowest_leaf_over_height", "coverage_az000", "coverage_az090", "coverage_az180",
                           "coverage_az270", "coverage_min", "depth_m", "depth_over_half_width", "depth_histogram"})
     EXPECT_NE(r.out.find(std::string(key) + " "), std::string::npos) << key << "\n" << r.out;
   nlohmann::json j = nlohmann::json::parse(slurp(dir_ / "m.json"));

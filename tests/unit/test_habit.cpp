@@ -248,13 +248,14 @@ TEST(HabitRanges, ReadsTheTable) {
   EXPECT_FALSE(ranges_of_text("method = \"lsystem\"\n").has_value());
   std::optional<HabitRanges> r = ranges_of_text(
       "method = \"lsystem\"\n[habit]\ncrown_width_over_height = [0.6, 1]\nclear_bole_over_height = [0.1, 0.3]\n"
-      "trunk_fraction_min = 0.25\nsingle_leader = true\n");
+      "trunk_fraction_min = 0.25\nsingle_leader = true\nlowest_leaf_over_height_min = 0.2\n");
   ASSERT_TRUE(r.has_value());
   EXPECT_DOUBLE_EQ(r->crown_ratio->x, 0.6);
   EXPECT_DOUBLE_EQ(r->crown_ratio->y, 1.0);
   EXPECT_DOUBLE_EQ(r->clear_bole->y, 0.3);
   EXPECT_DOUBLE_EQ(*r->trunk_fraction_min, 0.25);
   EXPECT_TRUE(r->single_leader);
+  EXPECT_DOUBLE_EQ(*r->lowest_leaf_min, 0.2);
 }
 
 TEST(HabitRanges, BadInputNamesFileLineAndKey) {
@@ -266,6 +267,7 @@ TEST(HabitRanges, BadInputNamesFileLineAndKey) {
   expect_habit_error(head + "clear_bole_over_height = [\"a\", 0.5]\n", 3, "clear_bole_over_height");
   expect_habit_error(head + "trunk_fraction_min = -0.1\n", 3, "trunk_fraction_min");
   expect_habit_error(head + "single_leader = 1\n", 3, "single_leader");
+  expect_habit_error(head + "lowest_leaf_over_height_min = 1.5\n", 3, "lowest_leaf_over_height_min");
   expect_habit_error(head + "crown_ratio = [0.1, 0.2]\n", 3, "crown_ratio");  // unknown key
   expect_habit_error("method = \"lsystem\"\nhabit = 3\n", 2, "habit");
   expect_habit_error("method = \"lsystem\"\n[habit]\n", 2, "habit");  // empty
@@ -276,18 +278,23 @@ TEST(HabitRanges, ChecksMetricsAgainstRanges) {
   r.crown_ratio = glm::dvec2(0.5, 1.0);
   r.trunk_fraction_min = 0.25;
   r.single_leader = true;
+  r.lowest_leaf_min = 0.2;
   HabitMetrics m;
   m.crown_ratio = 1.2f;
   m.trunk_fraction = 0.3f;
   m.single_leader = false;
+  m.lowest_leaf = 0.03f;  // foliage to the ground
   std::vector<HabitCheck> c = check_habit(m, r);
-  ASSERT_EQ(c.size(), 3u);
+  ASSERT_EQ(c.size(), 4u);
   EXPECT_EQ(c[0].key, "crown_width_over_height");
   EXPECT_FALSE(c[0].ok);
   EXPECT_EQ(c[0].range_text(), "0.50-1.00");
   EXPECT_TRUE(c[1].ok);
   EXPECT_EQ(c[1].range_text(), ">= 0.25");
   EXPECT_FALSE(c[2].ok);
+  EXPECT_EQ(c[3].key, "lowest_leaf_over_height_min");
+  EXPECT_FALSE(c[3].ok);
+  EXPECT_EQ(c[3].range_text(), ">= 0.20");
 }
 
 // The registry takes the table (checked before the skeleton pass) and the method never sees

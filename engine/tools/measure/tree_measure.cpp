@@ -83,6 +83,7 @@ std::vector<std::string> measurement_lines(const TreeMeasurement& m) {
                          h->codominant_fork ? "then a codominant fork" : "no codominant fork") +
                   range_note(checks, "trunk_fraction_min"));
     out.push_back(format("single_leader %s", h->single_leader ? "yes" : "no") + range_note(checks, "single_leader"));
+    out.push_back(format("lowest_leaf_over_height %.3f", h->lowest_leaf) + range_note(checks, "lowest_leaf_over_height_min"));
     if (!checks.empty()) {
       size_t ok = 0;
       for (const HabitCheck& c : checks) ok += c.ok;
