@@ -19,10 +19,7 @@ mkdir -p "$out/instanced" "$out/flat"
 "$forest" export "$model" --out "$out/instanced/$name.glb" >/dev/null
 "$forest" export "$model" --out "$out/flat/$name.glb" --flatten >/dev/null
 "$forest" preview "$model" --views 1 --size "$size" --out "$out/${name}_forest.png" >/dev/null
-cp "$root/tests/tools/three_render.html" "$root/build/npm/three_render.html"
-chromium --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader --allow-file-access-from-files \
-  --virtual-time-budget=60000 --window-size="$size,$size" --screenshot="$out/${name}_three.png" \
-  "file://$root/build/npm/three_render.html?file=$out/instanced/$name.glb" >/dev/null 2>&1
+"$root/scripts/three_picture.sh" "file=$out/instanced/$name.glb" "$out/${name}_three.png" "$size" >/dev/null
 # Blender takes its Python home from PATH: Debian's, whose numpy its glTF importer needs.
 PATH=/usr/bin:/bin blender -b --factory-startup --python-exit-code 1 -P "$root/tests/tools/blender_render.py" -- \
   "$out/flat/$name.glb" "$out/${name}_blender.png" "$size" 32 >/dev/null

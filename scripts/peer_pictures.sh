@@ -17,26 +17,7 @@ forest="$root/build/forest"
 [[ -d "$root/build/npm/node_modules/@dgreenheck/ez-tree" ]] ||
   { echo "peer_pictures: build/npm/node_modules/@dgreenheck/ez-tree missing (run scripts/test.sh once)" >&2; exit 2; }
 mkdir -p "$out"
-cp "$root/tests/tools/three_render.html" "$root/build/npm/three_render.html"
-page="file://$root/build/npm/three_render.html"
-# One three.js picture of QUERY (file=... or eztree=...) to PNG; prints its triangle count.
-# One --dump-dom run gives both, from the same finished page (three_render.html ?dump=1); a
-# run whose page had not finished (no title) is tried again, twice at most.
-three() {
-  local query="$1" png="$2" dom
-  for attempt in 1 2 3; do
-    dom=$(chromium --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
-      --allow-file-access-from-files --virtual-time-budget=60000 --window-size="$size,$size" \
-      --dump-dom "$page?$query&size=$size&dump=1" 2>/dev/null || true)
-    if [[ "$dom" == *"<title>rendered: "* && "$dom" == *'<pre id="png">data:image/png;base64,'* ]]; then
-      sed -n 's/.*<pre id="png">data:image\/png;base64,\([^<]*\)<\/pre>.*/\1/p' <<<"$dom" | base64 -d >"$png"
-      sed -n 's/.*<title>rendered: \([0-9]*\) triangles<\/title>.*/\1/p' <<<"$dom"
-      return 0
-    fi
-  done
-  echo "peer_pictures: three.js did not finish $query" >&2
-  return 1
-}
+three() { "$root/scripts/three_picture.sh" "$1" "$2" "$size"; }
 : >"$out/triangles.txt"
 # Pairs: an ez-tree preset and the forest species of the same habit.
 for pair in "oak:Oak Medium:quercus_robur" "pine:Pine Medium:pinus_sylvestris" "aspen:Aspen Medium:populus_trichocarpa"; do
