@@ -76,8 +76,7 @@ std::vector<std::string> measurement_lines(const TreeMeasurement& m) {
     out.push_back(format("height_m %.2f", h->height));
     out.push_back(format("crown_width_m %.2f (x %.2f, z %.2f)", h->crown_width, h->crown_width_x, h->crown_width_z));
     out.push_back(format("crown_width_over_height %.3f", h->crown_ratio) + range_note(checks, "crown_width_over_height"));
-    out.push_back(format("clear_bole_over_height %.3f (crown base %.2f m; lowest leaf at %.3f H)", h->clear_bole,
-                         h->crown_base, h->lowest_leaf) +
+    out.push_back(format("clear_bole_over_height %.3f (crown base %.2f m)", h->clear_bole, h->crown_base) +
                   range_note(checks, "clear_bole_over_height"));
     out.push_back(format("trunk_fraction %.3f (trunk %.2f m, %s)", h->trunk_fraction, h->trunk_height,
                          h->codominant_fork ? "then a codominant fork" : "no codominant fork") +
