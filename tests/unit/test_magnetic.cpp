@@ -175,6 +175,7 @@ TEST(Magnetic, ErrorsNameTheKey) {
   expect_key("method = \"magnetic\"\n[[spiral]]\nT = 50\nalpha = 0.8\n[[spiral]]\nT = 650\nalpha = 0.8\n", "T");
   expect_key("method = \"magnetic\"\nfield_tilt = 1.0\n", "field_tilt");
   expect_key("method = \"magnetic\"\nprofile = \"sawtooth\"\n", "profile");
+  expect_key("method = \"magnetic\"\ndomain = \"sphere\"\n", "domain");
 }
 
 TEST(Magnetic, TrunkClearDelaysTheTrunksFirstChild) {
@@ -202,4 +203,29 @@ TEST(Magnetic, TrunkClearDelaysTheTrunksFirstChild) {
   EXPECT_LT(first_release_arc(plain), 100.0);
   EXPECT_GE(first_release_arc(clear), 150.0 - 1e-6);
   EXPECT_LT(first_release_arc(clear), 1e29);  // the trunk still has children
+}
+
+TEST(Magnetic, DomeEndsCurvesOnARoundedCrown) {
+  // With domain = dome every point of every curve lies in the half ellipsoid, and the limbs
+  // that a box would cut flat at its ceiling end lower toward the rim.
+  SpaceFillParams P;
+  P.size = glm::dvec3(400, 300, 400);
+  P.max_curves = 60;
+  P.child_spacing = 30;
+  MagneticField f;
+  f.three_d = true;
+  f.tilt = 1.0;
+  size_t outside_in_box = 0, points_in_box = 0;
+  for (const MagneticCurve& c : grow_magnetic(P, f, 5).curves)
+    for (const glm::dvec3& x : c.points) outside_in_box += !inside_dome(P, true, x), ++points_in_box;
+  EXPECT_GT(outside_in_box, points_in_box / 50) << "the box's curves never leave the dome: the test shows nothing";
+  P.domain = Domain::Dome;
+  MagneticResult dome = grow_magnetic(P, f, 5);
+  ASSERT_GT(dome.curves.size(), 20u);
+  for (const MagneticCurve& c : dome.curves)
+    for (const glm::dvec3& x : c.points) ASSERT_TRUE(inside_dome(P, true, x)) << x.x << " " << x.y << " " << x.z;
+  // The dome itself: its top and floor centre are in, a top corner of the box is not.
+  EXPECT_TRUE(inside_dome(P, true, {200, 300, 200}));
+  EXPECT_TRUE(inside_dome(P, true, {200, 0, 200}));
+  EXPECT_FALSE(inside_dome(P, true, {399, 299, 200}));
 }

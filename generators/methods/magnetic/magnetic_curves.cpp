@@ -98,6 +98,12 @@ size_t MagneticResult::cell_of(glm::dvec3 p) const {
   return (size_t(c[2]) * dims[1] + c[1]) * dims[0] + c[0];
 }
 
+bool inside_dome(const SpaceFillParams& P, bool three_d, glm::dvec3 p) {
+  const double x = (p.x - 0.5 * P.size.x) / (0.5 * P.size.x), y = p.y / P.size.y;
+  const double z = three_d ? (p.z - 0.5 * P.size.z) / (0.5 * P.size.z) : 0.0;
+  return x * x + y * y + z * z <= 1.0;
+}
+
 MagneticResult grow_magnetic(const SpaceFillParams& P, const MagneticField& field, uint64_t seed) {
   MagneticResult R;
   R.cell = P.cell;
@@ -111,7 +117,7 @@ MagneticResult grow_magnetic(const SpaceFillParams& P, const MagneticField& fiel
   R.owner.assign(size_t(cells), -1);
   auto inside = [&](glm::dvec3 p) {
     return p.x >= 0 && p.y >= 0 && p.x <= P.size.x && p.y <= P.size.y &&
-           (!three_d || (p.z >= 0 && p.z <= P.size.z));
+           (!three_d || (p.z >= 0 && p.z <= P.size.z)) && (P.domain == Domain::Box || inside_dome(P, three_d, p));
   };
   // Traces one particle; claims cells as it goes, releases them on a crossing.
   std::vector<size_t> claimed;

@@ -70,8 +70,14 @@ struct SpiralPair {
   double T = 650.0, alpha = 0.8;
 };
 
+// [ours] The domain's shape. A box ends every limb that reaches its top at one height: a
+// flat-topped crown. A dome, the half ellipsoid standing on the box's floor and touching its
+// walls and ceiling, ends limbs on a rounded surface: lower toward the crown's rim.
+enum class Domain { Box, Dome };
+
 struct SpaceFillParams {
   glm::dvec3 size{600.0, 800.0, 600.0};  // domain [0, size]; z ignored in 2D
+  Domain domain = Domain::Box;
   double cell = 4.0;                     // occupancy grid cell
   double dt = 0.5, speed = 1.0, mass = 1.0;
   Charge charge;                         // profile, q0 and waves; T and α come from pairs
@@ -95,6 +101,8 @@ struct MagneticResult {
 
 // First particle at the bottom centre heading up; children BFS over curves. Deterministic.
 MagneticResult grow_magnetic(const SpaceFillParams& params, const MagneticField& field, uint64_t seed);
+// Whether p lies in the dome of `params` (Domain::Dome; z ignored in 2D), surface included.
+bool inside_dome(const SpaceFillParams& params, bool three_d, glm::dvec3 p);
 
 // SVG of the curves projected on xy (y up in the model, down in SVG); stroke width shrinks
 // with depth.

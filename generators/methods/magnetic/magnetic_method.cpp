@@ -1,5 +1,6 @@
 // Species keys of method "magnetic" (all optional; ranges are checked):
-//   name, seed, mode ("2d" | "3d"), size ([x, y, z] simulation units), cell, dt, speed, mass,
+//   name, seed, mode ("2d" | "3d"), size ([x, y, z] simulation units), domain ("box" |
+//   "dome" [ours]: the half ellipsoid in the box, a rounded crown), cell, dt, speed, mass,
 //   profile ("spiral" | "power" | "triangle" | "square" | "constant"), q0, trunk_q0 (the
 //   first particle's q0), amplitude, mean,
 //   period, field (B0), field_noise (0..1), noise_scale, field_tilt (3d), child_spacing,
@@ -20,6 +21,7 @@ MagneticSpecies read_magnetic_species(const TomlTable& t) {
   s.field.three_d = t.choice("mode", "2d", {"2d", "3d"}) == "3d";
   glm::vec3 size = t.vec3("size", glm::vec3(600.0f, 800.0f, 600.0f), 1.0, 100000.0);
   P.size = glm::dvec3(size);
+  P.domain = t.choice("domain", "box", {"box", "dome"}) == "dome" ? Domain::Dome : Domain::Box;
   P.cell = t.number("cell", 4.0, 0.01, 10000.0);
   P.dt = t.number("dt", 0.5, 1e-3, 100.0);
   P.speed = t.number("speed", 1.0, 1e-3, 1000.0);
@@ -114,7 +116,7 @@ namespace {
 
 // The method's own species keys; the registry adds the common and the look keys.
 constexpr std::string_view kKeys[] = {
-    "mode", "size", "cell", "dt", "speed", "mass", "profile", "q0", "trunk_q0", "amplitude",
+    "mode", "size", "domain", "cell", "dt", "speed", "mass", "profile", "q0", "trunk_q0", "amplitude",
     "mean", "period", "field", "field_noise", "noise_scale", "field_tilt", "child_spacing", "trunk_clear",
     "max_curves", "max_depth", "scale", "spiral", FOREST_SKELETON_STYLE_KEYS};
 
