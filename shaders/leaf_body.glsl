@@ -1,6 +1,7 @@
 // The leaf vertex shader's body, compiled twice: leaf.vert draws each leaf as an instance of
 // the model's card (vertex attributes), leaf_pulled.vert (LEAF_PULLED) pulls the card's
-// corners from Model.card_corners by gl_VertexIndex (leaf_draw.glsl).
+// corners from Model.card_corners by gl_VertexIndex (leaf_draw.glsl). Either way a leaf is
+// one triangle around its card.
 // A partly occluded tree has a second draw, of the leaves tail_cull.comp kept, listed by index.
 #include "common.glsl"
 #include "draw_push.glsl"
@@ -32,7 +33,7 @@ void main() {
   Instance inst = instances[d.instance];
   Model m = models[inst.model];
 #ifdef LEAF_PULLED
-  // Vertex pulling (leaf_draw.glsl): item = vertex / 4, the card's corner = vertex % 4.
+  // Vertex pulling (leaf_draw.glsl): item = vertex / 4, the triangle's corner = vertex % 4.
   uint item = uint(gl_VertexIndex) >> 2;
   vec4 corner = m.card_corners[uint(gl_VertexIndex) & 3u];
   vec3 in_position = vec3(corner.xy, 0.0), in_normal = vec3(0.0, 0.0, 1.0);

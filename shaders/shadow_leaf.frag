@@ -8,5 +8,8 @@ layout(set = 0, binding = BINDING_LEAF_TEXTURES) uniform sampler2DArray leaf_tex
 layout(location = 4) in vec3 in_uv_layer;
 
 void main() {
-  if (texture(leaf_textures, in_uv_layer).a < 0.5) discard;
+  // A leaf is one triangle around its card; the card is the texture's unit square (tree_frag.glsl).
+  if (any(lessThan(in_uv_layer.xy, vec2(0.0))) || any(greaterThan(in_uv_layer.xy, vec2(1.0))) ||
+      texture(leaf_textures, in_uv_layer).a < 0.5)
+    discard;
 }

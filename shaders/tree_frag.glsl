@@ -52,6 +52,11 @@ vec3 perturb_normal(vec3 n, vec3 p, vec2 uv, vec3 t) {
 // smaller, so the bake and every render use one formula by construction, not a driver's
 // approximation that textureQueryLod might not share. The per-sample test (leaf_sample_mask)
 // reads the same level.
+// Whether uv lies on the leaf card: a leaf is drawn as one triangle around its card quad
+// (scene_buffers.cpp, leaf_triangle), and the card is the texture's unit square, so this test
+// cuts the triangle back to the quad, at each sample where samples are tested.
+bool leaf_inside_card(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))); }
+
 float leaf_lod() {
   vec2 size = vec2(textureSize(leaf_textures, 0).xy);
   vec2 dx = dFdx(in_uv_layer.xy) * size, dy = dFdy(in_uv_layer.xy) * size;
@@ -85,7 +90,7 @@ bool leaf_sample_mask(float lod) {
   for (uint s = 0u; s < COVERAGE_SAMPLES; ++s) {
     vec2 o = sample_offset(s);
     vec3 uv = vec3(in_uv_layer.xy + dx * o.x + dy * o.y, in_uv_layer.z);
-    if (textureLod(leaf_textures, uv, lod).a >= 0.5) mask |= 1u << s;
+    if (leaf_inside_card(uv.xy) && textureLod(leaf_textures, uv, lod).a >= 0.5) mask |= 1u << s;
   }
   gl_SampleMask[0] = int(mask);
   return mask != 0u;
@@ -100,6 +105,7 @@ bool leaf_sample_mask(float lod) {
 // alpha >= 0.5 as in main().
 void lattice_coverage() {
   float lod = leaf_lod();
+  if (!leaf_inside_card(in_uv_layer.xy)) discard;
   uint parity = pixel_parity(uint(gl_FragCoord.x), uint(gl_FragCoord.y));
   vec4 covered;
   covered.r = textureLod(leaf_textures, in_uv_layer, lod).a >= 0.5 ? 1.0 : 0.0;
@@ -157,7 +163,7 @@ void main() {
 #ifdef LEAF_MSAA
     if (!leaf_sample_mask(lod)) discard;
 #else
-    if (texel.a < 0.5) discard;
+    if (texel.a < 0.5 || !leaf_inside_card(in_uv_layer.xy)) discard;
 #endif
     albedo *= texel.rgb;
   }

@@ -8,6 +8,7 @@
 #include "engine/occlusion/occlusion_samples.h"
 #include "engine/render/bark_textures.h"
 #include "engine/render/impostor_textures.h"
+#include "engine/render/leaf_card.h"
 #include "engine/render/leaf_textures.h"
 #include "generators/asset/pr_tables.h"
 
@@ -51,51 +52,39 @@ void add_branch_lods(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
   }
 }
 
-// The card's corners in the pulled quad pattern's order (corners 0 1 2 and 0 2 3, gpu_types.h),
-// xy position and uv; false unless the card is such a quad: 4 vertices in the plane z = 0 with
-// normal +Z, two triangles sharing an edge, wound alike.
-bool card_quad_corners(const Mesh& card, glm::vec4 out[4]) {
-  if (card.vertices.size() != 4 || card.indices.size() != 6) return false;
-  for (const Vertex& v : card.vertices)
-    if (v.position.z != 0.0f || glm::length(v.normal - glm::vec3(0.0f, 0.0f, 1.0f)) > 1e-4f) return false;
-  const uint32_t* t1 = &card.indices[0];
-  const uint32_t* t2 = &card.indices[3];
-  auto in = [](const uint32_t* t, uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; };
-  // Rotate the first triangle so that its corner off the shared edge comes second: (c0, c1, c2);
-  // the second triangle must then be (c0, c2, c3) up to rotation.
-  int lone = -1;
-  for (int k = 0; k < 3; ++k)
-    if (!in(t2, t1[k])) lone = k;
-  uint32_t fourth = 4;
-  for (int k = 0; k < 3; ++k)
-    if (!in(t1, t2[k])) fourth = t2[k];
-  if (lone < 0 || fourth > 3) return false;
-  const uint32_t c[4] = {t1[(lone + 2) % 3], t1[lone], t1[(lone + 1) % 3], fourth};
-  bool wound = false;
-  for (int r = 0; r < 3; ++r)
-    wound = wound || (t2[r] == c[0] && t2[(r + 1) % 3] == c[2] && t2[(r + 2) % 3] == c[3]);
-  if (!wound) return false;
-  for (int k = 0; k < 4; ++k) {
-    const Vertex& v = card.vertices[c[k]];
-    out[k] = glm::vec4(v.position.x, v.position.y, v.uv.x, v.uv.y);
-  }
-  return true;
-}
-
-// The shared index pattern of pulled leaf draws: leaf j's corners 4j + (0 1 2, 0 2 3).
+// The shared index pattern: one card quad (corners 0 1 2, 0 2 3; impostors draw it), then
+// pulled leaf j's triangle 4j + (0 1 2) for `leaves` leaves (gpu_types.h, leaf_draw.glsl).
 uint32_t append_quad_pattern(SceneArrays& a, uint32_t leaves) {
   const uint32_t first = uint32_t(a.indices.size());
+  for (uint32_t c : {0u, 1u, 2u, 0u, 2u, 3u}) a.indices.push_back(c);
   for (uint32_t j = 0; j < leaves; ++j)
-    for (uint32_t c : {0u, 1u, 2u, 0u, 2u, 3u}) a.indices.push_back(4 * j + c);
+    for (uint32_t c : {0u, 1u, 2u}) a.indices.push_back(4 * j + c);
   return first;
 }
 
 void add_foliage(SceneArrays& a, const TreeModel& tm, gpu::Model& m, bool& pullable) {
-  if (!tm.leaves.empty() && !tm.leaf_card.indices.empty() && !card_quad_corners(tm.leaf_card, m.card_corners))
+  // A quad card is drawn as its enclosing triangle (leaf_triangle), pulled or instanced alike;
+  // any other card only as instances of its own mesh.
+  glm::vec4 quad[4];
+  Mesh card = tm.leaf_card;
+  if (card_quad_corners(tm.leaf_card, quad)) {
+    glm::vec4 tri[3];
+    leaf_triangle(quad, tri);
+    card.vertices.resize(3);
+    card.indices = {0, 1, 2};
+    for (int k = 0; k < 3; ++k) {
+      m.card_corners[k] = tri[k];
+      card.vertices[k].position = glm::vec3(tri[k].x, tri[k].y, 0.0f);
+      card.vertices[k].normal = glm::vec3(0.0f, 0.0f, 1.0f);
+      card.vertices[k].uv = glm::vec2(tri[k].z, tri[k].w);
+    }
+    m.card_corners[3] = glm::vec4(0.0f);
+  } else if (!tm.leaves.empty() && !tm.leaf_card.indices.empty()) {
     pullable = false;
-  auto [cf, cv] = a.append(tm.leaf_card);
+  }
+  auto [cf, cv] = a.append(card);
   m.card_first_index = cf;
-  m.card_index_count = uint32_t(tm.leaf_card.indices.size());
+  m.card_index_count = uint32_t(card.indices.size());
   m.card_vertex_offset = cv;
   for (const Vertex& v : tm.leaf_card.vertices) m.card_radius = std::max(m.card_radius, glm::length(v.position));
   m.leaf_offset = uint32_t(a.leaves.size());

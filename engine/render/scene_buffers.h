@@ -24,8 +24,8 @@ struct SceneBuffers {
   uint32_t instance_count = 0;
   uint32_t terrain_index_count = 0;  // the terrain is the first mesh of `indices`
   uint64_t instance_leaves = 0;      // Σ over instances of its model's leaf count
-  // Every model's leaf card is a quad (Model::card_corners): leaves may be drawn by vertex
-  // pulling (leaf_draw.glsl); else only as instances.
+  // Every model's leaf card is a quad, drawn as one triangle (Model::card_corners, leaf_card.h):
+  // leaves may be drawn by vertex pulling (leaf_draw.glsl); else only as instances.
   bool leaves_pullable = true;
 };
 

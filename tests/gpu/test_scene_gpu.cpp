@@ -67,7 +67,9 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
   Scene s = model_scene(m, 40, 30.0f);
   ASSERT_EQ(s.instances.size(), 40u);
   Renderer r(ctx_, s, 160, 120, 1);
-  const uint64_t card_triangles = m.leaf_card.indices.size() / 3;
+  // A leaf is one triangle around its card quad (engine/render/leaf_card.h), not the quad's two.
+  ASSERT_EQ(m.leaf_card.indices.size(), 6u);
+  const uint64_t card_triangles = 1;
   const uint64_t terrain_triangles = s.terrain.mesh().indices.size() / 3;
   for (bool mask : {false, true}) {
     FrameSettings fs;
@@ -78,7 +80,7 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
     ASSERT_LT(st.branch_draws, 40u) << "want some trees culled";
     // Input assembly saw exactly what the compacted indirect commands asked for: the sky
     // triangle and the terrain (not in mask mode), the bark of every visible tree at its
-    // chosen LOD and k leaf cards per tree.
+    // chosen LOD and k leaf triangles per tree.
     uint64_t expected = uint64_t(st.branch_triangles) + uint64_t(st.leaves_drawn) * card_triangles +
                         (mask ? 0 : 1 + terrain_triangles);
     EXPECT_EQ(st.draw_pipeline.ia_primitives, expected) << (mask ? "mask" : "shaded");
