@@ -21,18 +21,18 @@ layout(location = 6) flat out float out_fade;
 void main() {
   DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
   Instance inst = instances[d.instance];
-  Model m = models[inst.model];
+  const uint model = inst.model;  // fields read where used (leaf_body.glsl says why)
   vec3 world = rotate_yaw(in_position, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
   out_world = world;
   out_normal = rotate_yaw(in_normal, inst.yaw_cos_sin);
   // The bark texture (tree.frag) times the material colour: white when the texture holds
   // the colour, the model's bark_color on the neutral layer. The tint's alpha varies the
   // brightness per instance.
-  out_albedo = m.bark_color.rgb * unpack_tint(inst.tint).a;
+  out_albedo = models[model].bark_color.rgb * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
   out_sun_visibility = 1.0;
   out_fade = d.fade;
-  out_uv_layer = vec3(in_uv, float(m.bark_texture_layer));
+  out_uv_layer = vec3(in_uv, float(models[model].bark_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda) * 0.6;
   gl_Position = draw_view_proj() * vec4(world, 1.0);
 }

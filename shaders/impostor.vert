@@ -25,10 +25,10 @@ void main() {
   uint list = draw.cascade == SHADOW_NONE ? 0u : 1u + draw.cascade;
   ImpostorEntry e = impostors[list * frame.instance_count + uint(gl_InstanceIndex)];
   Instance inst = instances[e.instance];
-  Model m = models[inst.model];
+  const vec4 sphere = models[inst.model].bounding_sphere;  // not the whole Model (leaf_body.glsl)
   float s = inst.position_scale.w;
-  vec3 center = inst.position_scale.xyz + rotate_yaw(m.bounding_sphere.xyz, inst.yaw_cos_sin) * s;
-  float radius = m.bounding_sphere.w * s;
+  vec3 center = inst.position_scale.xyz + rotate_yaw(sphere.xyz, inst.yaw_cos_sin) * s;
+  float radius = sphere.w * s;
   vec3 to_viewer = draw.cascade == SHADOW_NONE ? normalize(frame.camera_pos.xyz - center) : frame.sun_dir.xyz;
 
   vec3 v_model = rotate_yaw(to_viewer, vec2(inst.yaw_cos_sin.x, -inst.yaw_cos_sin.y));

@@ -12,7 +12,6 @@ layout(location = 4) flat in vec3 in_weights;
 
 struct ImpostorPixel {
   Instance inst;
-  Model model;
   ImpostorHit hit;
   vec3 world;   // the hit in world space
 };
@@ -25,15 +24,16 @@ struct ImpostorPixel {
 // the expected coverage but scatters false pixels both ways (Q 0.79 → 0.67 there).
 bool impostor_pixel(out ImpostorPixel px) {
   px.inst = instances[in_instance];
-  px.model = models[px.inst.model];
+  // The model's fields, not the whole Model, per pixel (leaf_body.glsl says why).
+  const vec4 sphere = models[px.inst.model].bounding_sphere;
   float s = px.inst.position_scale.w;
   vec2 inverse_yaw = vec2(px.inst.yaw_cos_sin.x, -px.inst.yaw_cos_sin.y);
-  vec3 center = px.inst.position_scale.xyz + rotate_yaw(px.model.bounding_sphere.xyz, px.inst.yaw_cos_sin) * s;
+  vec3 center = px.inst.position_scale.xyz + rotate_yaw(sphere.xyz, px.inst.yaw_cos_sin) * s;
   vec3 ray_world = draw.cascade == SHADOW_NONE ? normalize(in_world - frame.camera_pos.xyz) : -frame.sun_dir.xyz;
   vec3 rel = rotate_yaw(in_world - center, inverse_yaw) / s;
-  px.hit = impostor_hit(px.model, in_views, in_weights, rel, rotate_yaw(ray_world, inverse_yaw));
+  px.hit = impostor_hit(sphere.w, models[px.inst.model].impostor_layer, in_views, in_weights, rel, rotate_yaw(ray_world, inverse_yaw));
   px.world = center + rotate_yaw(px.hit.point, px.inst.yaw_cos_sin) * s;
-  float cutoff = frame.impostor.z > 0.0 ? frame.impostor.z : px.model.impostor_cutoff;
+  float cutoff = frame.impostor.z > 0.0 ? frame.impostor.z : models[px.inst.model].impostor_cutoff;
   if (px.hit.alpha < cutoff) return false;
   // The mesh keeps the pixels below its fade 1 − in_fade (tree.frag), the impostor the rest.
   return in_fade >= 1.0 || dither_threshold(gl_FragCoord.xy) >= 1.0 - in_fade;

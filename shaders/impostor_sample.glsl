@@ -28,9 +28,10 @@ vec3 impostor_atlas_uv(uint view, vec2 uv, float layer) {
 }
 
 // `rel`: the quad's point relative to the centre; `ray`: unit direction of the pixel's ray.
-ImpostorHit impostor_hit(Model m, uvec3 views, vec3 weights, vec3 rel, vec3 ray) {
-  float radius = max(m.bounding_sphere.w, 1e-3);
-  float layer = float(m.impostor_layer);
+// `sphere_radius` and `impostor_layer`: the model's (Model.bounding_sphere.w, .impostor_layer).
+ImpostorHit impostor_hit(float sphere_radius, uint impostor_layer, uvec3 views, vec3 weights, vec3 rel, vec3 ray) {
+  float radius = max(sphere_radius, 1e-3);
+  float layer = float(impostor_layer);
   ImpostorHit hit = ImpostorHit(0.0, vec3(0.0), vec3(0.0), vec3(0.0));
   for (int k = 0; k < 3; ++k) {
     uint view = views[k];

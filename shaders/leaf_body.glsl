@@ -31,11 +31,14 @@ float hash(uint x) {
 void main() {
   DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
   Instance inst = instances[d.instance];
-  Model m = models[inst.model];
+  // The model's fields are read where used, never the whole Model: lavapipe copies every
+  // member of a struct loaded from a buffer, per vertex (1.29x of a walk.toml frame;
+  // bench/results/leaf_vertex_cost.md).
+  const uint model = inst.model;
 #ifdef LEAF_PULLED
   // Vertex pulling (leaf_draw.glsl): item = vertex / 4, the triangle's corner = vertex % 4.
   uint item = uint(gl_VertexIndex) >> 2;
-  vec4 corner = m.card_corners[uint(gl_VertexIndex) & 3u];
+  vec4 corner = models[model].card_corners[uint(gl_VertexIndex) & 3u];
   vec3 in_position = vec3(corner.xy, 0.0), in_normal = vec3(0.0, 0.0, 1.0);
   vec2 in_uv = corner.zw;
 #else
@@ -45,17 +48,17 @@ void main() {
   Leaf leaf = leaves[leaf_index];
   // Pruning: survivors grow by sqrt(s) (s scales area); the last leaves of the prefix are in
   // the transition band and shrink toward its end.
-  float prefix_index = float(leaf_index - m.leaf_offset);
+  float prefix_index = float(leaf_index - models[model].leaf_offset);
   float size = leaf.position_scale.w * sqrt(d.area_scale) *
-               transition_size(prefix_index, d.lambda * float(m.leaf_count), frame.prune.y);
+               transition_size(prefix_index, d.lambda * float(models[model].leaf_count), frame.prune.y);
   vec3 local = rotate_quat(leaf.rotation, in_position * size) + leaf.position_scale.xyz;
   vec3 world = rotate_yaw(local, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
   out_world = world;
   out_normal = rotate_yaw(rotate_quat(leaf.rotation, in_normal), inst.yaw_cos_sin);
   vec4 tint = unpack_tint(inst.tint);
   float v = 0.85 + 0.3 * hash(leaf_index);
-  out_albedo = m.leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
-  out_uv_layer = vec3(in_uv, float(m.leaf_texture_layer));
+  out_albedo = models[model].leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
+  out_uv_layer = vec3(in_uv, float(models[model].leaf_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda);
   out_sun_visibility = 1.0;
   out_fade = d.fade;
@@ -68,7 +71,7 @@ void main() {
   // Crown self-shadowing (crown_light.h): the leaf's baked depths below the hull, or unbaked
   // the exit distances from the bounding sphere; the sun direction in model space (the
   // inverse yaw; uniform scale does not turn it).
-  float kappa = m.crown_extinction;
+  float kappa = models[model].crown_extinction;
   vec3 crown_pos, crown_neg;
   if (kappa > 0.0) {
     vec2 dx = unpackHalf2x16(leaf.crown_depth.x), dy = unpackHalf2x16(leaf.crown_depth.y),
@@ -76,9 +79,9 @@ void main() {
     crown_pos = vec3(dx.x, dy.x, dz.x);
     crown_neg = vec3(dx.y, dy.y, dz.y);
   } else {
-    kappa = CROWN_FALLBACK_OPTICAL_DEPTH / max(m.bounding_sphere.w, 1e-3);
-    crown_pos = crown_sphere_pos(local, m.bounding_sphere.xyz, m.bounding_sphere.w);
-    crown_neg = crown_sphere_neg(local, m.bounding_sphere.xyz, m.bounding_sphere.w);
+    kappa = CROWN_FALLBACK_OPTICAL_DEPTH / max(models[model].bounding_sphere.w, 1e-3);
+    crown_pos = crown_sphere_pos(local, models[model].bounding_sphere.xyz, models[model].bounding_sphere.w);
+    crown_neg = crown_sphere_neg(local, models[model].bounding_sphere.xyz, models[model].bounding_sphere.w);
   }
   // κ·D is the same at any instance scale (leaf area ∝ s², volume ∝ s³, paths ∝ s).
   vec3 sun_model = rotate_yaw(frame.sun_dir.xyz, vec2(inst.yaw_cos_sin.x, -inst.yaw_cos_sin.y));
