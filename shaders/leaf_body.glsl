@@ -31,9 +31,9 @@ float hash(uint x) {
 void main() {
   DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
   Instance inst = instances[d.instance];
-  // The model's fields are read where used, never the whole Model: lavapipe copies every
-  // member of a struct loaded from a buffer, per vertex (1.29x of a walk.toml frame;
-  // bench/results/leaf_vertex_cost.md).
+  // The model's fields are read where used, never the whole Model: with `Model m = models[..]`
+  // lavapipe kept the copy of all ~90 words per vertex (likely because card_corners is indexed
+  // at run time), 1.23-1.29x of a walk.toml frame (bench/results/leaf_vertex_cost.md).
   const uint model = inst.model;
 #ifdef LEAF_PULLED
   // Vertex pulling (leaf_draw.glsl): item = vertex / 4, the triangle's corner = vertex % 4.
