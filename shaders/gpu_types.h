@@ -95,10 +95,10 @@ using mat4 = glm::mat4;
 
 // The shared index pattern at Model.leaf_quad_first_index: one quad, LEAF_QUAD_INDICES (corners
 // 0 1 2, 0 2 3; impostors draw it), then the pulled leaves (leaf_draw.glsl): leaf j is the
-// vertex indices 4·j + corner, drawn as one triangle around its card, LEAF_TRIANGLE_INDICES
-// (corners 0 1 2; Model.card_corners); one draw per tree, no instancing.
+// point j, LEAF_POINT_INDICES, that leaf_card.geom makes the triangle around its card
+// (Model.card_corners); one draw per tree, no instancing.
 #define LEAF_QUAD_INDICES 6
-#define LEAF_TRIANGLE_INDICES 3
+#define LEAF_POINT_INDICES 1
 
 // Cascaded shadow maps of the sun (shadow_pass.h): cascades over [near, shadow_distance].
 #define SHADOW_CASCADES 3
@@ -232,7 +232,7 @@ GPU_STRUCT Model {
   vec4 bark_color;           // linear rgb, times the bark albedo texture (white when it holds the colour)
   vec4 leaf_color;           // linear rgb
   // The corners of the triangle around the leaf card (scene_buffers.cpp, leaf_triangle), in
-  // the order of the pulled pattern (LEAF_TRIANGLE_INDICES): xy = card position (z = 0, normal
+  // the order leaf_card.geom emits them: xy = card position (z = 0, normal
   // +Z), zw = uv, which runs past the texture's unit square (cut by the fragment shaders);
   // [3] unused.
   vec4 card_corners[4];
@@ -259,7 +259,7 @@ GPU_STRUCT Model {
   // baked, leaf.vert then uses the exit distance from the bounding sphere with a default κ.
   float crown_extinction;
   float pr_size0;            // projected size (px across the bounding sphere) of the tables' size 0
-  uint leaf_quad_first_index;  // the shared index pattern: a quad, then the pulled leaves' triangles
+  uint leaf_quad_first_index;  // the shared index pattern: a quad, then the pulled leaves' points
   uint impostor_layer;       // layer of BINDING_IMPOSTOR_ALBEDO / _NORMALS; 0: no impostor
   float impostor_cutoff;     // blended coverage from which an impostor pixel shows the tree (baked)
   // Q of the impostor against full detail at the PR table sizes (pr_size0 / 2^b), baked.

@@ -1,7 +1,9 @@
 // The leaf vertex shader's body, compiled twice: leaf.vert draws each leaf as an instance of
-// the model's card (vertex attributes), leaf_pulled.vert (LEAF_PULLED) pulls the card's
-// corners from Model.card_corners by gl_VertexIndex (leaf_draw.glsl). Either way a leaf is
-// one triangle around its card.
+// the model's card (vertex attributes, three vertices a leaf); leaf_pulled.vert (LEAF_PULLED)
+// is one vertex a leaf, the item gl_VertexIndex (leaf_draw.glsl), a point that leaf_card.geom
+// expands into the card's triangle from Model.card_corners. Either way a leaf is one triangle
+// around its card. A leaf's vertex work is its buffer reads (bench/results/leaf_vertex_cost.md):
+// pulled, they are made once a leaf instead of once a corner.
 // A partly occluded tree has a second draw, of the leaves tail_cull.comp kept, listed by index.
 #include "common.glsl"
 #include "draw_push.glsl"
@@ -10,11 +12,21 @@
 layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_TAIL_LEAVES, std430) readonly buffer TailLeaves { uint tail_leaves[]; };
 
-#ifndef LEAF_PULLED
+#ifdef LEAF_PULLED
+// To leaf_card.geom: the card's frame (world and clip space) and what the fragments share.
+layout(location = 0) out vec4 out_origin_layer;     // world position of the card origin, texture layer
+layout(location = 1) out vec4 out_normal_sun;       // world normal, sun visibility
+layout(location = 2) out vec4 out_albedo_fade;      // albedo, the mesh's share of an impostor fade
+layout(location = 3) out vec4 out_axis_x_ao;        // world card x axis (leaf size), ambient occlusion
+layout(location = 4) out vec4 out_axis_y_translucency;
+layout(location = 5) out vec4 out_clip_origin;      // clip space: origin, and the axes (w = 0 in world)
+layout(location = 6) out vec4 out_clip_x;
+layout(location = 7) out vec4 out_clip_y;
+layout(location = 8) out vec4 out_corner[3];        // Model.card_corners
+#else
 layout(location = ATTR_POSITION) in vec3 in_position;
 layout(location = ATTR_NORMAL) in vec3 in_normal;
 layout(location = ATTR_UV) in vec2 in_uv;
-#endif
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec3 out_albedo;
@@ -22,6 +34,7 @@ layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 layout(location = 5) out float out_sun_visibility;
 layout(location = 6) flat out float out_fade;
+#endif
 
 float hash(uint x) {
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
@@ -36,11 +49,7 @@ void main() {
   // at run time), 1.23-1.29x of a walk.toml frame (bench/results/leaf_vertex_cost.md).
   const uint model = inst.model;
 #ifdef LEAF_PULLED
-  // Vertex pulling (leaf_draw.glsl): item = vertex / 4, the triangle's corner = vertex % 4.
-  uint item = uint(gl_VertexIndex) >> 2;
-  vec4 corner = models[model].card_corners[uint(gl_VertexIndex) & 3u];
-  vec3 in_position = vec3(corner.xy, 0.0), in_normal = vec3(0.0, 0.0, 1.0);
-  vec2 in_uv = corner.zw;
+  uint item = uint(gl_VertexIndex);  // vertex pulling (leaf_draw.glsl): one point a leaf
 #else
   uint item = uint(gl_InstanceIndex);
 #endif
@@ -51,41 +60,75 @@ void main() {
   float prefix_index = float(leaf_index - models[model].leaf_offset);
   float size = leaf.position_scale.w * sqrt(d.area_scale) *
                transition_size(prefix_index, d.lambda * float(models[model].leaf_count), frame.prune.y);
-  vec3 local = rotate_quat(leaf.rotation, in_position * size) + leaf.position_scale.xyz;
-  vec3 world = rotate_yaw(local, inst.yaw_cos_sin) * inst.position_scale.w + inst.position_scale.xyz;
-  out_world = world;
-  out_normal = rotate_yaw(rotate_quat(leaf.rotation, in_normal), inst.yaw_cos_sin);
+  vec3 leaf_origin = leaf.position_scale.xyz;
+  vec2 yaw = inst.yaw_cos_sin;
+  float scale = inst.position_scale.w;
+#ifdef LEAF_PULLED
+  const vec3 card_normal = vec3(0.0, 0.0, 1.0);  // pulled cards are quads in their z = 0 plane
+#else
+  vec3 card_normal = in_normal;
+#endif
+  vec3 normal = rotate_yaw(rotate_quat(leaf.rotation, card_normal), yaw);
   vec4 tint = unpack_tint(inst.tint);
   float v = 0.85 + 0.3 * hash(leaf_index);
-  out_albedo = models[model].leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
-  out_uv_layer = vec3(in_uv, float(models[model].leaf_texture_layer));
-  if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda);
-  out_sun_visibility = 1.0;
-  out_fade = d.fade;
-  out_ao_translucency = vec2(1.0, 0.45);
+  vec3 albedo = models[model].leaf_color.rgb * leaf.color.rgb * tint.rgb * tint.a * v;
+  if ((frame.view_flags & VIEW_LAMBDA) != 0) albedo = lambda_color(d.shown_lambda);
+  const float layer = float(models[model].leaf_texture_layer);
+  // The card is linear in its corner p: world = origin + p.x·axis_x + p.y·axis_y (+ p.z·axis_z
+  // for a card that is not a flat quad, drawn instanced), and so is its clip position. Both
+  // forms compute a corner by these sums (leaf_card.geom for pulled leaves), so that they draw
+  // the same frame bit for bit (gpu.OcclusionTest.PulledAndInstancedLeavesDrawTheSameFrame).
+  vec3 origin = rotate_yaw(leaf_origin, yaw) * scale + inst.position_scale.xyz;
+  vec3 axis_x = rotate_yaw(rotate_quat(leaf.rotation, vec3(size, 0.0, 0.0)), yaw) * scale;
+  vec3 axis_y = rotate_yaw(rotate_quat(leaf.rotation, vec3(0.0, size, 0.0)), yaw) * scale;
+  float sun_visibility = 1.0;
+  vec2 ao_translucency = vec2(1.0, 0.45);
   // The shadow map and coverage (mask) frames need the position and uv alone.
-  if (draw.cascade != SHADOW_NONE || (frame.view_flags & VIEW_MASK) != 0) {
-    gl_Position = draw_view_proj() * vec4(world, 1.0);
-    return;
+  if (draw.cascade == SHADOW_NONE && (frame.view_flags & VIEW_MASK) == 0) {
+    // Crown self-shadowing (crown_light.h): the leaf's baked depths below the hull, or unbaked
+    // the exit distances from the bounding sphere at its origin (once a leaf: its corners are
+    // centimetres apart in a crown of metres); the sun direction in model space (the inverse
+    // yaw; uniform scale does not turn it).
+    float kappa = models[model].crown_extinction;
+    vec3 crown_pos, crown_neg;
+    if (kappa > 0.0) {
+      vec2 dx = unpackHalf2x16(leaf.crown_depth.x), dy = unpackHalf2x16(leaf.crown_depth.y),
+           dz = unpackHalf2x16(leaf.crown_depth.z);
+      crown_pos = vec3(dx.x, dy.x, dz.x);
+      crown_neg = vec3(dx.y, dy.y, dz.y);
+    } else {
+      kappa = CROWN_FALLBACK_OPTICAL_DEPTH / max(models[model].bounding_sphere.w, 1e-3);
+      crown_pos = crown_sphere_pos(leaf_origin, models[model].bounding_sphere.xyz, models[model].bounding_sphere.w);
+      crown_neg = crown_sphere_neg(leaf_origin, models[model].bounding_sphere.xyz, models[model].bounding_sphere.w);
+    }
+    // κ·D is the same at any instance scale (leaf area ∝ s², volume ∝ s³, paths ∝ s).
+    vec3 sun_model = rotate_yaw(frame.sun_dir.xyz, vec2(yaw.x, -yaw.y));
+    sun_visibility = crown_sun_transmittance(crown_pos, crown_neg, kappa, sun_model);
+    ao_translucency.x = crown_ambient(crown_sky_visibility(crown_pos, crown_neg, kappa));
   }
-  // Crown self-shadowing (crown_light.h): the leaf's baked depths below the hull, or unbaked
-  // the exit distances from the bounding sphere; the sun direction in model space (the
-  // inverse yaw; uniform scale does not turn it).
-  float kappa = models[model].crown_extinction;
-  vec3 crown_pos, crown_neg;
-  if (kappa > 0.0) {
-    vec2 dx = unpackHalf2x16(leaf.crown_depth.x), dy = unpackHalf2x16(leaf.crown_depth.y),
-         dz = unpackHalf2x16(leaf.crown_depth.z);
-    crown_pos = vec3(dx.x, dy.x, dz.x);
-    crown_neg = vec3(dx.y, dy.y, dz.y);
-  } else {
-    kappa = CROWN_FALLBACK_OPTICAL_DEPTH / max(models[model].bounding_sphere.w, 1e-3);
-    crown_pos = crown_sphere_pos(local, models[model].bounding_sphere.xyz, models[model].bounding_sphere.w);
-    crown_neg = crown_sphere_neg(local, models[model].bounding_sphere.xyz, models[model].bounding_sphere.w);
-  }
-  // κ·D is the same at any instance scale (leaf area ∝ s², volume ∝ s³, paths ∝ s).
-  vec3 sun_model = rotate_yaw(frame.sun_dir.xyz, vec2(inst.yaw_cos_sin.x, -inst.yaw_cos_sin.y));
-  out_sun_visibility = crown_sun_transmittance(crown_pos, crown_neg, kappa, sun_model);
-  out_ao_translucency = vec2(crown_ambient(crown_sky_visibility(crown_pos, crown_neg, kappa)), 0.45);
-  gl_Position = draw_view_proj() * vec4(world, 1.0);
+  mat4 view_proj = draw_view_proj();
+  vec4 clip_origin = view_proj * vec4(origin, 1.0);
+  vec4 clip_x = view_proj * vec4(axis_x, 0.0), clip_y = view_proj * vec4(axis_y, 0.0);
+#ifdef LEAF_PULLED
+  out_origin_layer = vec4(origin, layer);
+  out_normal_sun = vec4(normal, sun_visibility);
+  out_albedo_fade = vec4(albedo, d.fade);
+  out_axis_x_ao = vec4(axis_x, ao_translucency.x);
+  out_axis_y_translucency = vec4(axis_y, ao_translucency.y);
+  out_clip_origin = clip_origin;
+  out_clip_x = clip_x;
+  out_clip_y = clip_y;
+  for (uint c = 0u; c < 3u; ++c) out_corner[c] = models[model].card_corners[c];
+#else
+  vec3 axis_z = rotate_yaw(rotate_quat(leaf.rotation, vec3(0.0, 0.0, size)), yaw) * scale;
+  out_world = origin + in_position.x * axis_x + in_position.y * axis_y + in_position.z * axis_z;
+  out_normal = normal;
+  out_albedo = albedo;
+  out_uv_layer = vec3(in_uv, layer);
+  out_sun_visibility = sun_visibility;
+  out_fade = d.fade;
+  out_ao_translucency = ao_translucency;
+  gl_Position = clip_origin + in_position.x * clip_x + in_position.y * clip_y +
+                in_position.z * (view_proj * vec4(axis_z, 0.0));
+#endif
 }

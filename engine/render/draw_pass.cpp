@@ -50,9 +50,7 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
     leaves.write_alpha = false;
   }
   p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
-  leaves.vertex = "leaf_pulled_vert";
-  leaves.vertex_input = false;
-  p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
+  if (vk::pull_leaves(ctx, leaves)) p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
   return p;
 }
 
@@ -150,10 +148,10 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
     d.blend_max = true;
     d.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_COVERAGE_LATTICES, 1u}};
     p.lattice_leaves_instanced = vk::create_graphics_pipeline(ctx, layout, d);
-    d.vertex = "leaf_pulled_vert";
-    d.vertex_input = false;
-    p.lattice_leaves = vk::create_graphics_pipeline(ctx, layout, d);
+    if (vk::pull_leaves(ctx, d)) p.lattice_leaves = vk::create_graphics_pipeline(ctx, layout, d);
     d.vertex = "branch_vert";
+    d.geometry = {};
+    d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     d.vertex_input = true;
     d.cull = VK_CULL_MODE_BACK_BIT;
     d.fragment_specialization = {{SPEC_COVERAGE_LATTICES, 1u}};

@@ -355,9 +355,10 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
                        settings.fixed_scale);
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
   fd.prune_mode = uint32_t(settings.prune_mode);
+  // Pulled leaves need quad cards and a geometry shader (leaf_card.geom); else instances.
+  const bool instanced = settings.instanced_leaves || !buffers_.leaves_pullable || !ctx_.geometry_shader;
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u) |
-                  (settings.shadow_view ? VIEW_SHADOW : 0u) |
-                  (settings.instanced_leaves || !buffers_.leaves_pullable ? VIEW_LEAF_INSTANCED : 0u) |
+                  (settings.shadow_view ? VIEW_SHADOW : 0u) | (instanced ? VIEW_LEAF_INSTANCED : 0u) |
                   (settings.impostor_bake == ImpostorBake::albedo ? VIEW_IMPOSTOR_ALBEDO : 0u) |
                   (settings.impostor_bake == ImpostorBake::normal ? VIEW_IMPOSTOR_NORMAL : 0u);
   fd.impostors = uint32_t(settings.impostors);

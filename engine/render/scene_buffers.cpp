@@ -57,8 +57,7 @@ void add_branch_lods(SceneArrays& a, const TreeModel& tm, gpu::Model& m) {
 uint32_t append_quad_pattern(SceneArrays& a, uint32_t leaves) {
   const uint32_t first = uint32_t(a.indices.size());
   for (uint32_t c : {0u, 1u, 2u, 0u, 2u, 3u}) a.indices.push_back(c);
-  for (uint32_t j = 0; j < leaves; ++j)
-    for (uint32_t c : {0u, 1u, 2u}) a.indices.push_back(4 * j + c);
+  for (uint32_t j = 0; j < leaves; ++j) a.indices.push_back(j);  // one point a leaf (leaf_card.geom)
   return first;
 }
 

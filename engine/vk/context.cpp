@@ -333,6 +333,10 @@ void create_device(Context& ctx) {
   vkGetPhysicalDeviceFeatures(ctx.physical, &available);
   ctx.fill_mode_non_solid = available.fillModeNonSolid;  // optional: only the wireframe view uses it
   features.features.fillModeNonSolid = available.fillModeNonSolid;
+  // Optional: pulled leaves make their triangles in a geometry shader (leaf_card.geom); without
+  // one they are drawn as instances of the card.
+  ctx.geometry_shader = available.geometryShader == VK_TRUE;
+  features.features.geometryShader = available.geometryShader;
   // Optional: pipeline-statistics queries (`forest render --stats` prints "n/a" without).
   ctx.pipeline_statistics = available.pipelineStatisticsQuery == VK_TRUE;
   features.features.pipelineStatisticsQuery = available.pipelineStatisticsQuery;

@@ -58,6 +58,7 @@ struct Context {
   bool validation = false;
   VkSurfaceKHR surface = VK_NULL_HANDLE;  // windowed contexts only; destroyed with the context
   bool fill_mode_non_solid = false;       // enabled when the device has it (wireframe view)
+  bool geometry_shader = false;  // enabled when present: pulled leaves (else drawn instanced)
   bool pipeline_statistics = false;  // optional feature pipelineStatisticsQuery, enabled when present
   // Validation messages of severity warning or error seen so far (tests assert 0).
   std::atomic<uint32_t> validation_messages{0};

@@ -63,6 +63,7 @@ VkPipelineColorBlendAttachmentState blend_state(const GraphicsPipelineDesc& desc
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc) {
   VkShaderModule vs = create_shader(ctx, desc.vertex);
   VkShaderModule fs = desc.fragment.empty() ? VK_NULL_HANDLE : create_shader(ctx, desc.fragment);
+  VkShaderModule gs = desc.geometry.empty() ? VK_NULL_HANDLE : create_shader(ctx, desc.geometry);
   std::vector<VkSpecializationMapEntry> entries;
   std::vector<uint32_t> values;
   for (const SpecConstant& c : desc.fragment_specialization) {
@@ -71,11 +72,15 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   }
   VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t),
                                       values.data()};
-  VkPipelineShaderStageCreateInfo stages[2] = {
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main"},
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
-       entries.empty() ? nullptr : &specialization},
-  };
+  VkPipelineShaderStageCreateInfo stages[3] = {
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main"}};
+  uint32_t stage_count = 1;
+  if (gs)
+    stages[stage_count++] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_GEOMETRY_BIT,
+                             gs, "main"};
+  if (fs)
+    stages[stage_count++] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
+                             fs, "main", entries.empty() ? nullptr : &specialization};
 
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
   VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -86,7 +91,7 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
     vertex_input.pVertexAttributeDescriptions = kVertexAttributes;
   }
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  assembly.topology = desc.topology;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
@@ -120,7 +125,7 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   rendering.depthAttachmentFormat = desc.depth_format;
 
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-  ci.stageCount = fs ? 2 : 1;
+  ci.stageCount = stage_count;
   ci.pStages = stages;
   ci.pVertexInputState = &vertex_input;
   ci.pInputAssemblyState = &assembly;
@@ -135,7 +140,17 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
   vkDestroyShaderModule(ctx.device, vs, nullptr);
   if (fs) vkDestroyShaderModule(ctx.device, fs, nullptr);
+  if (gs) vkDestroyShaderModule(ctx.device, gs, nullptr);
   return pipeline;
+}
+
+bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves) {
+  if (!ctx.geometry_shader) return false;
+  leaves.vertex = "leaf_pulled_vert";
+  leaves.geometry = "leaf_card_geom";
+  leaves.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+  leaves.vertex_input = false;
+  return true;
 }
 
 VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader) {

@@ -27,6 +27,8 @@ struct SpecConstant {
 struct GraphicsPipelineDesc {
   std::string_view vertex;    // shader registry names
   std::string_view fragment;  // empty: no fragment stage (depth-only passes)
+  std::string_view geometry;  // empty: none (pulled leaves: Context::geometry_shader)
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   bool vertex_input = true;   // forest::Vertex (position, normal, uv) at binding 0
   VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
   bool depth_test = true;
@@ -53,6 +55,11 @@ inline VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayo
 }
 
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc);
+
+// Makes `leaves` (a leaf pipeline of leaf.vert) the pulled form: one point a leaf from
+// leaf_pulled.vert, made a triangle by leaf_card.geom (shaders/leaf_draw.glsl). False, and
+// `leaves` unchanged, on a device without geometry shaders, which draws leaves instanced.
+bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves);
 VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader);
 
 }  // namespace forest::vk

@@ -315,6 +315,11 @@ TEST_F(OcclusionTest, PulledAndInstancedLeavesDrawTheSameFrame) {
   EXPECT_EQ(stats[0].leaves_drawn, stats[1].leaves_drawn);
   EXPECT_EQ(stats[0].leaves_saved, stats[1].leaves_saved);
   ASSERT_EQ(images[0].rgba.size(), images[1].rgba.size());
-  EXPECT_TRUE(images[0].rgba == images[1].rgba) << "shaded frames differ";
-  EXPECT_TRUE(masks[0].rgba == masks[1].rgba) << "coverage differs";
+  // Both forms compute a leaf's corners by the same sums (leaf_body.glsl, leaf_card.geom), but
+  // lavapipe's geometry-shader path may place a vertex a rounding step apart, which decides a
+  // depth tie between two crossing cards here and there (1 pixel of this frame): allow 1 pixel
+  // in 2 000. A wrong leaf, corner or transform in either form changes hundreds.
+  const size_t pixels = images[0].rgba.size() / 4, allowed = pixels / 2000;
+  EXPECT_LE(differing_pixels(images[0], images[1]), allowed) << "shaded frames differ";
+  EXPECT_LE(differing_pixels(masks[0], masks[1]), allowed) << "coverage differs";
 }

@@ -80,11 +80,14 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
     ASSERT_LT(st.branch_draws, 40u) << "want some trees culled";
     // Input assembly saw exactly what the compacted indirect commands asked for: the sky
     // triangle and the terrain (not in mask mode), the bark of every visible tree at its
-    // chosen LOD and k leaf triangles per tree.
-    uint64_t expected = uint64_t(st.branch_triangles) + uint64_t(st.leaves_drawn) * card_triangles +
-                        (mask ? 0 : 1 + terrain_triangles);
+    // chosen LOD and k leaves per tree, each one point (leaf_card.geom makes its triangle).
+    const uint64_t leaves = uint64_t(st.leaves_drawn) * card_triangles;
+    uint64_t expected = uint64_t(st.branch_triangles) + leaves + (mask ? 0 : 1 + terrain_triangles);
     EXPECT_EQ(st.draw_pipeline.ia_primitives, expected) << (mask ? "mask" : "shaded");
-    EXPECT_EQ(st.draw_pipeline.ia_vertices, 3 * expected);  // triangle lists
+    EXPECT_EQ(st.draw_pipeline.ia_vertices, 3 * (expected - leaves) + leaves);  // triangle and point lists
+    // Every leaf whose size the pruning transition left above zero becomes a triangle.
+    EXPECT_LE(st.draw_pipeline.clip_invocations, expected);
+    EXPECT_GT(st.draw_pipeline.clip_invocations, expected - leaves);
     EXPECT_GT(st.draw_pipeline.fs_invocations, 0u);
     EXPECT_LE(st.draw_pipeline.clip_primitives, st.draw_pipeline.clip_invocations * 2);
     // One cull thread per instance, rounded up to whole workgroups (not on lavapipe, where
