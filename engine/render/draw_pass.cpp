@@ -50,7 +50,8 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
     leaves.write_alpha = false;
   }
   p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
-  if (vk::pull_leaves(ctx, leaves)) p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
+  // The wireframe view draws leaves instanced (Renderer::frame_data).
+  if (!wire && vk::pull_leaves(ctx, leaves)) p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
   return p;
 }
 

@@ -355,8 +355,11 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
                        settings.fixed_scale);
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);
   fd.prune_mode = uint32_t(settings.prune_mode);
-  // Pulled leaves need quad cards and a geometry shader (leaf_card.geom); else instances.
-  const bool instanced = settings.instanced_leaves || !buffers_.leaves_pullable || !ctx_.geometry_shader;
+  // Pulled leaves need quad cards and a geometry shader (leaf_card.geom); else instances. The
+  // wireframe view draws instances too: lavapipe drew the geometry shader's triangles in line
+  // mode as lines from each corner to one point of the screen (gpu.GpuWireframe.*).
+  const bool instanced =
+      settings.instanced_leaves || settings.wireframe || !buffers_.leaves_pullable || !ctx_.geometry_shader;
   fd.view_flags = (settings.lambda_view ? VIEW_LAMBDA : 0u) | (settings.mask ? VIEW_MASK : 0u) |
                   (settings.shadow_view ? VIEW_SHADOW : 0u) | (instanced ? VIEW_LEAF_INSTANCED : 0u) |
                   (settings.impostor_bake == ImpostorBake::albedo ? VIEW_IMPOSTOR_ALBEDO : 0u) |
