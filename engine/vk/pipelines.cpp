@@ -58,6 +58,11 @@ VkPipelineColorBlendAttachmentState blend_state(const GraphicsPipelineDesc& desc
   return b;
 }
 
+VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits bit, VkShaderModule module,
+                                      const VkSpecializationInfo* specialization = nullptr) {
+  return {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, bit, module, "main", specialization};
+}
+
 }  // namespace
 
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc) {
@@ -72,15 +77,10 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   }
   VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t),
                                       values.data()};
-  VkPipelineShaderStageCreateInfo stages[3] = {
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main"}};
+  VkPipelineShaderStageCreateInfo stages[3] = {stage(VK_SHADER_STAGE_VERTEX_BIT, vs)};
   uint32_t stage_count = 1;
-  if (gs)
-    stages[stage_count++] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_GEOMETRY_BIT,
-                             gs, "main"};
-  if (fs)
-    stages[stage_count++] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-                             fs, "main", entries.empty() ? nullptr : &specialization};
+  if (gs) stages[stage_count++] = stage(VK_SHADER_STAGE_GEOMETRY_BIT, gs);
+  if (fs) stages[stage_count++] = stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs, entries.empty() ? nullptr : &specialization);
 
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
   VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -138,9 +138,8 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   ci.layout = layout;
   VkPipeline pipeline;
   VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
-  vkDestroyShaderModule(ctx.device, vs, nullptr);
-  if (fs) vkDestroyShaderModule(ctx.device, fs, nullptr);
-  if (gs) vkDestroyShaderModule(ctx.device, gs, nullptr);
+  for (VkShaderModule module : {vs, gs, fs})
+    if (module) vkDestroyShaderModule(ctx.device, module, nullptr);
   return pipeline;
 }
 

@@ -245,10 +245,8 @@ const std::vector<Shader>& shaders() {
       }
       std::string mode = s.reflection["entryPoints"][0].value("mode", "");
       s.stage = mode == "vert"   ? VK_SHADER_STAGE_VERTEX_BIT
-                : mode == "frag" ? VK_SHADER_STAGE_FRAGMENT_BIT
-                : mode == "geom" ? VK_SHADER_STAGE_GEOMETRY_BIT
-                : mode == "comp" ? VK_SHADER_STAGE_COMPUTE_BIT
-                                 : VK_SHADER_STAGE_ALL;
+                : mode == "frag" ? VK_SHADER_STAGE_FRAGMENT_BIT : mode == "geom" ? VK_SHADER_STAGE_GEOMETRY_BIT
+                : mode == "comp" ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_ALL;
       if (s.stage == VK_SHADER_STAGE_ALL) ADD_FAILURE() << s.name << ": unknown shader stage '" << mode << "'";
       v.push_back(std::move(s));
     }
@@ -330,8 +328,8 @@ TEST(GpuInterface, ShadersWereCompiledAndReflected) {
   // The pipelines of the renderer, depth pyramid and present pass.
   for (const char* expected : {"cull_comp", "tail_cull_comp", "pr_count_comp", "depth_pyramid_comp", "sky_vert",
                                "sky_frag", "terrain_vert", "terrain_frag", "branch_vert", "leaf_vert", "leaf_pulled_vert",
-                               "leaf_card_geom", "tree_frag",
-                               "pyramid_overlay_vert", "pyramid_overlay_frag", "present_vert", "present_frag"})
+                               "leaf_card_geom", "tree_frag", "pyramid_overlay_vert", "pyramid_overlay_frag", "present_vert",
+                               "present_frag"})
     EXPECT_TRUE(names.count(expected)) << expected << ".spv missing from " << FOREST_SHADER_DIR;
   // Every kind of resource the reflection lists is one the tests below check.
   const std::set<std::string> known = {"entryPoints", "types",           "inputs",           "outputs",
