@@ -16,7 +16,7 @@ layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 layout(location = 5) out float out_sun_visibility;
-layout(location = 6) flat out float out_fade;
+layout(location = 6) flat out vec2 out_fade_shadow;  // the impostor fade; y unused (bark reads the shadow map per fragment)
 
 void main() {
   DrawCommand d = commands[draw.command_base + gl_DrawIDARB];
@@ -31,7 +31,7 @@ void main() {
   out_albedo = models[model].bark_color.rgb * unpack_tint(inst.tint).a;
   out_ao_translucency = vec2(0.8, 0.0);
   out_sun_visibility = 1.0;
-  out_fade = d.fade;
+  out_fade_shadow = vec2(d.fade, 1.0);
   out_uv_layer = vec3(in_uv, float(models[model].bark_texture_layer));
   if ((frame.view_flags & VIEW_LAMBDA) != 0) out_albedo = lambda_color(d.shown_lambda) * 0.6;
   gl_Position = draw_view_proj() * vec4(world, 1.0);

@@ -8,6 +8,10 @@
 #include "common.glsl"
 #include "draw_push.glsl"
 #include "crown_light.h"
+#ifndef LEAF_CASTER  // the shadow pass's casters (leaf_caster*.vert) are not lit
+#define SHADOW_EXPLICIT_LOD
+#include "lighting.glsl"
+#endif
 
 layout(set = 0, binding = BINDING_COMMANDS, std430) readonly buffer Commands { DrawCommand commands[]; };
 layout(set = 0, binding = BINDING_TAIL_LEAVES, std430) readonly buffer TailLeaves { uint tail_leaves[]; };
@@ -23,6 +27,7 @@ layout(location = 5) out vec4 out_clip_origin;      // clip space: origin, and t
 layout(location = 6) out vec4 out_clip_x;
 layout(location = 7) out vec4 out_clip_y;
 layout(location = 8) out vec4 out_corner[3];        // Model.card_corners
+layout(location = 11) out float out_leaf_shadow;    // the shadow map at the card's centre (leaf_sun_shadow)
 #else
 layout(location = ATTR_POSITION) in vec3 in_position;
 layout(location = ATTR_NORMAL) in vec3 in_normal;
@@ -33,7 +38,7 @@ layout(location = 2) out vec3 out_albedo;
 layout(location = 3) out vec2 out_ao_translucency;
 layout(location = 4) out vec3 out_uv_layer;
 layout(location = 5) out float out_sun_visibility;
-layout(location = 6) flat out float out_fade;
+layout(location = 6) flat out vec2 out_fade_shadow;  // the impostor fade, the shadow map (leaf_sun_shadow)
 #endif
 
 float hash(uint x) {
@@ -81,9 +86,10 @@ void main() {
   vec3 origin = rotate_yaw(leaf_origin, yaw) * scale + inst.position_scale.xyz;
   vec3 axis_x = rotate_yaw(rotate_quat(leaf.rotation, vec3(size, 0.0, 0.0)), yaw) * scale;
   vec3 axis_y = rotate_yaw(rotate_quat(leaf.rotation, vec3(0.0, size, 0.0)), yaw) * scale;
-  float sun_visibility = 1.0;
+  float sun_visibility = 1.0, leaf_shadow = 1.0;
   vec2 ao_translucency = vec2(1.0, 0.45);
   // The shadow map and coverage (mask) frames need the position and uv alone.
+#ifndef LEAF_CASTER
   if (draw.cascade == SHADOW_NONE && (frame.view_flags & VIEW_MASK) == 0) {
     // Crown self-shadowing (crown_light.h): the leaf's baked depths below the hull, or unbaked
     // the exit distances from the bounding sphere at its origin (once a leaf: its corners are
@@ -105,7 +111,11 @@ void main() {
     vec3 sun_model = rotate_yaw(frame.sun_dir.xyz, vec2(yaw.x, -yaw.y));
     sun_visibility = crown_sun_transmittance(crown_pos, crown_neg, kappa, sun_model);
     ao_translucency.x = crown_ambient(crown_sky_visibility(crown_pos, crown_neg, kappa));
+    // The shadow map once a leaf (lighting.glsl), at the card's centre (cards span y in
+    // [0, 1], make_leaf_card). Not for the shadow pass's casters (leaf_caster*.vert): they draw it.
+    leaf_shadow = leaf_sun_shadow(origin + 0.5 * axis_y, normal);
   }
+#endif
   mat4 view_proj = draw_view_proj();
   vec4 clip_origin = view_proj * vec4(origin, 1.0);
   vec4 clip_x = view_proj * vec4(axis_x, 0.0), clip_y = view_proj * vec4(axis_y, 0.0);
@@ -119,6 +129,7 @@ void main() {
   out_clip_x = clip_x;
   out_clip_y = clip_y;
   for (uint c = 0u; c < 3u; ++c) out_corner[c] = models[model].card_corners[c];
+  out_leaf_shadow = leaf_shadow;
 #else
   vec3 axis_z = rotate_yaw(rotate_quat(leaf.rotation, vec3(0.0, 0.0, size)), yaw) * scale;
   out_world = origin + in_position.x * axis_x + in_position.y * axis_y + in_position.z * axis_z;
@@ -126,7 +137,7 @@ void main() {
   out_albedo = albedo;
   out_uv_layer = vec3(in_uv, layer);
   out_sun_visibility = sun_visibility;
-  out_fade = d.fade;
+  out_fade_shadow = vec2(d.fade, leaf_shadow);
   out_ao_translucency = ao_translucency;
   gl_Position = clip_origin + in_position.x * clip_x + in_position.y * clip_y +
                 in_position.z * (view_proj * vec4(axis_z, 0.0));

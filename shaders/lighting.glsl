@@ -16,6 +16,14 @@ vec3 sky_color(vec3 d) {
   return c;
 }
 
+// One bilinear depth-compare tap. A vertex shader has no implicit level of detail: it reads
+// with zero gradients, the same texels of the map's single level.
+#ifdef SHADOW_EXPLICIT_LOD
+#define SHADOW_TAP(coord) textureGrad(shadow_map, coord, vec2(0.0), vec2(0.0))
+#else
+#define SHADOW_TAP(coord) texture(shadow_map, coord)
+#endif
+
 // Fraction of the sun that reaches world point p (surface normal n, any side): the cascade
 // holding p's view depth, a normal offset of 1.5 texels toward the sun against acne, 3×3
 // bilinear PCF taps (each a 2×2 compare), faded out over the last 10 % of the distance.
@@ -30,9 +38,19 @@ float sun_shadow(vec3 p, vec3 n) {
   float texel = 1.0 / frame.shadow_texel.w;
   float lit = 0.0;
   for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x) lit += texture(shadow_map, vec4(uv + vec2(x, y) * texel, float(c), q.z));
+    for (int x = -1; x <= 1; ++x) lit += SHADOW_TAP(vec4(uv + vec2(x, y) * texel, float(c), q.z));
   return mix(lit / 9.0, 1.0, smoothstep(0.9 * frame.shadow_splits.w, frame.shadow_splits.w, depth));
 }
+
+// The shadow map once a leaf, at its card's centre p, in the leaf vertex shader (leaf_body.glsl),
+// handed to the fragments with the fade (flat). A leaf is a few centimetres wide, a few texels
+// of the nearest cascade at most: only a shadow edge crossing a near leaf is lost, and the leaf
+// is lit or shaded whole, as its crown light already is. On lavapipe the 3×3 lookup per
+// fragment was a sixth of walk.toml's 4-sample frame, and its fragment shaders run both sides
+// of any branch, uniform ones too, so only a shader without it saves it
+// (bench/results/leaf_shadow.md). [render] leaf_shadows = "fragment" keeps the lookup per
+// fragment (tree_frag.glsl, SPEC_LEAF_SHADOW_PER_FRAGMENT): close-ups, and the comparison.
+float leaf_sun_shadow(vec3 p, vec3 n) { return sun_shadow(p, n); }
 
 // A diffuse surface, or a leaf (translucency > 0): n faces the viewer. Sun light through a
 // leaf, seen from its unlit side, scatters forward: strongest looking toward the sun

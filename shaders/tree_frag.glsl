@@ -13,6 +13,7 @@ layout(constant_id = SPEC_LEAF) const bool LEAF = false;
 layout(constant_id = SPEC_COVERAGE_SAMPLES) const uint COVERAGE_SAMPLES = 4u;
 #endif
 layout(constant_id = SPEC_COVERAGE_LATTICES) const bool COVERAGE_LATTICES = false;
+layout(constant_id = SPEC_LEAF_SHADOW_PER_FRAGMENT) const bool LEAF_SHADOW_PER_FRAGMENT = false;
 
 layout(set = 0, binding = BINDING_LEAF_TEXTURES) uniform sampler2DArray leaf_textures;
 layout(set = 0, binding = BINDING_BARK_ALBEDO) uniform sampler2DArray bark_albedo;
@@ -24,7 +25,7 @@ layout(location = 2) in vec3 in_albedo;
 layout(location = 3) in vec2 in_ao_translucency;
 layout(location = 4) in vec3 in_uv_layer;
 layout(location = 5) in float in_sun_visibility;
-layout(location = 6) flat in float in_fade;
+layout(location = 6) flat in vec2 in_fade_shadow;  // the mesh's share of an impostor fade; a leaf's shadow map (leaf_sun_shadow)
 layout(location = 0) out vec4 out_color;
 
 // The normal n perturbed by tangent-space normal t (glTF convention: +X along +u, +Y along
@@ -150,7 +151,7 @@ bool impostor_bake_output(vec3 albedo, vec3 n) {
 
 void main() {
   // Cross-fade with the tree's impostor (cull.comp): this mesh keeps the pixels below its fade.
-  if (in_fade < 1.0 && dither_threshold(gl_FragCoord.xy) >= in_fade) discard;
+  if (in_fade_shadow.x < 1.0 && dither_threshold(gl_FragCoord.xy) >= in_fade_shadow.x) discard;
   if (COVERAGE_LATTICES) {
     if (LEAF) lattice_coverage();
     else branch_lattice_coverage();
@@ -185,7 +186,10 @@ void main() {
     n = perturb_normal(n, in_world, in_uv_layer.xy, texture(bark_normals, in_uv_layer).xyz * 2.0 - 1.0);
   }
   if (impostor_bake_output(albedo, n)) return;
-  float sun_visibility = sun_shadow(in_world, n);
+  // Leaves bring the shadow map's visibility from their vertex shader (leaf_sun_shadow) unless
+  // the pipeline reads it per fragment: a specialization, since lavapipe pays for both sides
+  // of a branch.
+  float sun_visibility = LEAF && !LEAF_SHADOW_PER_FRAGMENT ? in_fade_shadow.y : sun_shadow(in_world, n);
   if ((frame.view_flags & VIEW_SHADOW) != 0) {
     out_color = vec4(vec3(sun_visibility), 1.0);
     return;

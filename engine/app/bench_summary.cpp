@@ -107,7 +107,12 @@ glm::vec3 mode_color(std::string name) {
   if (name == "opt-density") return {0.9f, 0.6f, 0.1f};
   if (name == "opt-orientation") return {0.55f, 0.35f, 0.15f};
   if (name == "opt-layered") return {0.0f, 0.55f, 0.55f};
-  return {0.6f, 0.2f, 0.7f};
+  if (name == "cook-random") return {0.95f, 0.55f, 0.5f};
+  if (name == "opt-occl") return {0.45f, 0.15f, 0.75f};
+  if (name == "opt-occl-instanced") return {0.75f, 0.55f, 0.95f};
+  if (name == "opt-occl-imp") return {0.9f, 0.1f, 0.6f};
+  if (name == "target") return {0.55f, 0.55f, 0.0f};
+  return {0.5f, 0.5f, 0.5f};  // a mode without a colour of its own
 }
 
 std::string tolerance_text() {

@@ -33,7 +33,7 @@ struct ModeSummary {
 ModeSummary summarize(const BenchMode& mode, std::vector<BenchFrame> frames);
 std::string frames_csv(const ModeSummary& m);
 std::string trees_csv(const ModeSummary& m);  // --tree-pr: frame, time_s, size_px, q per tree; "" without
-glm::vec3 mode_color(std::string name);
+glm::vec3 mode_color(std::string name);  // plots: a colour of its own per bench mode, "+shadows" darker
 // `value` of every frame of every mode against the time along the path, one PNG.
 void write_path_plot(const std::vector<ModeSummary>& modes, const std::string& title, const std::string& y_label,
                      double (*value)(const BenchFrame&), const std::filesystem::path& file);

@@ -7,7 +7,8 @@ namespace forest {
 
 namespace {
 
-DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples, bool wire) {
+DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples, bool wire,
+                              bool leaf_shadows_per_fragment) {
   vk::GraphicsPipelineDesc d;
   d.color_format = kColorFormat;
   d.depth_format = kDepthFormat;
@@ -39,7 +40,7 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
   leaves.vertex = "leaf_vert";
   if (!wire) {
     leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
-    leaves.fragment_specialization = {{SPEC_LEAF, 1u}};
+    leaves.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_LEAF_SHADOW_PER_FRAGMENT, leaf_shadows_per_fragment ? 1u : 0u}};
     if (samples > VK_SAMPLE_COUNT_1_BIT) {  // the leaf alpha becomes a sample mask (leaf_msaa.frag)
       leaves.fragment = "leaf_msaa_frag";
       leaves.fragment_specialization.push_back({SPEC_COVERAGE_SAMPLES, uint32_t(samples)});
@@ -134,9 +135,10 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& t, const DrawList
 
 }  // namespace
 
-DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples) {
+DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples,
+                          bool leaf_shadows_per_fragment) {
   DrawPass p;
-  p.fill = create_pipelines(ctx, layout, samples, false);
+  p.fill = create_pipelines(ctx, layout, samples, false, leaf_shadows_per_fragment);
   if (samples == VK_SAMPLE_COUNT_1_BIT) {
     vk::GraphicsPipelineDesc d;
     d.color_format = kColorFormat;
@@ -158,7 +160,7 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
     d.fragment_specialization = {{SPEC_COVERAGE_LATTICES, 1u}};
     p.lattice_branches = vk::create_graphics_pipeline(ctx, layout, d);
   }
-  if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true);
+  if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true, leaf_shadows_per_fragment);
   return p;
 }
 

@@ -37,7 +37,10 @@ inline constexpr Binding kDrawBindings[] = {
     {BINDING_BARK_NORMALS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
 };
 
-DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples);
+// leaf_shadows_per_fragment: leaves read the shadow map per fragment, not once a leaf
+// ([render] leaf_shadows = "fragment"; tree.frag, SPEC_LEAF_SHADOW_PER_FRAGMENT).
+DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples,
+                          bool leaf_shadows_per_fragment = false);
 void destroy_draw_pass(vk::Context& ctx, DrawPass& pass);
 
 // What one recording draws.

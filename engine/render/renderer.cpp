@@ -65,7 +65,7 @@ Renderer::Renderer(vk::Context& ctx, const Scene& scene, uint32_t width, uint32_
 
   cull_ = create_cull_pass(ctx, layout_, buffers_.instance_count);
   tail_cull_ = create_tail_cull_pass(ctx, layout_, buffers_.instance_count, buffers_.instance_leaves);
-  draw_ = create_draw_pass(ctx, layout_, targets_.samples);
+  draw_ = create_draw_pass(ctx, layout_, targets_.samples, scene.desc.leaf_shadows_per_fragment);
   pr_count_ = create_pr_count_pass(ctx, layout_, targets_.extent);
   pyramid_overlay_ = create_pyramid_overlay_pass(ctx, layout_);
   memory_.passes = take();

@@ -9,6 +9,8 @@ namespace {
 // Slope-scaled bias against acne on surfaces at grazing sun angles; the receivers add a
 // normal offset of about one texel (shadow.glsl), so this stays small.
 constexpr float kBiasConstant = 1.0f, kBiasSlope = 1.5f;
+// The stages that sample the map: fragments, and the leaf vertex shader (leaf_sun_shadow).
+constexpr VkPipelineStageFlags2 kMapReaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 
 VkSampler create_compare_sampler(vk::Context& ctx) {
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -48,7 +50,7 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
   branches.vertex = "branch_vert";
   p.branches = vk::create_graphics_pipeline(ctx, layout, branches);
   vk::GraphicsPipelineDesc leaves = d;
-  leaves.vertex = "leaf_vert";
+  leaves.vertex = "leaf_caster_vert";      // no light, and no read of the map being drawn
   leaves.fragment = "shadow_leaf_frag";  // the card's alpha cut-out
   p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
   if (vk::pull_leaves(ctx, leaves)) p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
@@ -61,7 +63,7 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
   vk::submit_now(ctx, [&](VkCommandBuffer cmd) {
     vk::image_barrier(cmd, p.map.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, 1, SHADOW_CASCADES);
+                      kMapReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, 1, SHADOW_CASCADES);
   });
   return p;
 }
@@ -104,7 +106,7 @@ void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayo
   const VkPipelineStageFlags2 tests = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   // After the previous frame's shading read the map.
   vk::image_barrier(cmd, p.map.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kMapReaders,
                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, tests,
                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 1,
                     SHADOW_CASCADES);
@@ -151,7 +153,7 @@ void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayo
   }
   vk::image_barrier(cmd, p.map.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tests, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, 1, SHADOW_CASCADES);
+                    kMapReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, 1, SHADOW_CASCADES);
 }
 
 }  // namespace forest

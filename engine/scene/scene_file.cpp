@@ -31,7 +31,7 @@ glm::vec2 read_pair(const TomlTable& t, const char* key, double lo, double hi) {
 
 void read_render(const TomlTable& t, SceneDesc& s) {
   t.check_keys({"width", "height", "samples", "lod_error_pixels", "mode", "prune_distance", "transition", "view",
-                "occlusion", "shadows", "shadow_distance", "shadow_resolution", "exposure", "quality", "impostors"});
+                "occlusion", "shadows", "shadow_distance", "shadow_resolution", "exposure", "quality", "impostors", "leaf_shadows"});
   s.width = uint32_t(t.integer("width", s.width, kMinFrameSide, kMaxFrameSide));
   s.height = uint32_t(t.integer("height", s.height, kMinFrameSide, kMaxFrameSide));
   s.samples = uint32_t(t.integer("samples", s.samples, 1, 8));
@@ -50,6 +50,7 @@ void read_render(const TomlTable& t, SceneDesc& s) {
   s.shadow_distance = float(t.number("shadow_distance", s.shadow_distance, 1.0, 1e5));
   s.shadow_resolution = uint32_t(t.integer("shadow_resolution", s.shadow_resolution, 64, kMaxShadowResolution));
   s.exposure = float(t.number("exposure", s.exposure, 1e-3, 1e3));
+  s.leaf_shadows_per_fragment = t.choice("leaf_shadows", "leaf", {"leaf", "fragment"}) == "fragment";
 }
 
 void read_camera(const TomlTable& t, CameraDesc& c) {

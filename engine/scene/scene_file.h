@@ -123,6 +123,9 @@ struct SceneDesc {
   bool impostors = false;         // [render] impostors: far trees as impostors where their baked Q allows (impostor_pass.h)
   float shadow_distance = 150.0f;  // [render] view depth (m) the cascades cover; beyond it, no sun shadows
   uint32_t shadow_resolution = 0;  // [render] texels per side of each cascade; 0: shadow_resolution_for(height)
+  // [render] leaf_shadows = "leaf" (default): a leaf reads the shadow map once, at its centre;
+  // "fragment": per fragment, sharper where a shadow edge crosses a near leaf, slower (lighting.glsl).
+  bool leaf_shadows_per_fragment = false;
   float exposure = 1.0f;          // [render] scene-linear multiplier before the filmic tone map
   CameraDesc camera;
   SkyDesc sky;

@@ -3,7 +3,9 @@
 // through them toward a viewer who looks at the sun, and coverage that never depends on light.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/render/renderer.h"
 #include "engine/scene/camera.h"
@@ -397,4 +399,60 @@ TEST_F(Light, TheReceiverMaskKeepsEveryShadowSeenFromAbove) {
     for (uint32_t x = 0; x < size; ++x) dark += plain.pixel(x, y)[0] < 128;
   EXPECT_GT(dark, size_t(size * size / 20)) << "the grove shades the ground";
   EXPECT_EQ(masked.rgba, plain.rgba) << "the receiver mask dropped a shadow the camera sees";
+}
+
+// A leaf reads the shadow map once, at its card's centre (lighting.glsl, leaf_sun_shadow),
+// unless the scene asks for per-fragment reads ([render] leaf_shadows = "fragment"). Seen from
+// afar (leaves under a pixel) the trees' sun visibility is what the per-fragment reads give;
+// seen from near (leaves of a dozen pixels, several texels) only edges crossing a leaf differ:
+// close on average and pixel by pixel. Either way not the same frame: the leaves' reads were made.
+TEST_F(Light, ALeafReadsTheShadowMapOnce) {
+  const uint32_t size = 160;
+  Scene once = grove(size), per_fragment = grove(size);
+  per_fragment.desc.leaf_shadows_per_fragment = true;
+  Renderer r_once(ctx_, once, size, size, 1), r_fragment(ctx_, per_fragment, size, size, 1);
+  struct Compared { size_t tree_pixels = 0, differing = 0; double mean_abs = 0.0, mean_bias = 0.0, mean = 0.0; };
+  auto compare = [&](glm::vec3 position, glm::vec3 target, float fov) {
+    CameraDesc cam;
+    cam.position = position;
+    cam.target = target;
+    cam.fov_deg = fov;
+    FrameSettings f;
+    f.shadows = f.shadow_view = true;
+    FrameImage a_image, b_image, mask;
+    r_once.render(cam, &a_image, f);
+    r_fragment.render(cam, &b_image, f);
+    f.mask = true;
+    r_once.render(cam, &mask, f);
+    Compared c;
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size; ++x) {
+        if (mask.pixel(x, y)[0] != 255) continue;
+        const double a = a_image.pixel(x, y)[0] / 255.0, b = b_image.pixel(x, y)[0] / 255.0;
+        ++c.tree_pixels;
+        c.differing += a != b;
+        c.mean_abs += std::abs(a - b);
+        c.mean_bias += a - b;
+        c.mean += b;
+      }
+    const double n = double(std::max<size_t>(c.tree_pixels, 1));
+    c.mean_abs /= n, c.mean_bias /= n, c.mean /= n;
+    std::printf("tree pixels %zu, differing %zu, mean |diff| %.4f, bias %+.4f, mean visibility %.3f\n", c.tree_pixels,
+                c.differing, c.mean_abs, c.mean_bias, c.mean);
+    return c;
+  };
+  // From 75 m with 30° of view a pixel spans 0.25 m: the 0.11 m leaves are under half a pixel.
+  const Compared far = compare({60.0f, 30.0f, 40.0f}, {0.0f, 4.0f, 0.0f}, 30.0f);  // from the shaded side
+  EXPECT_GT(far.tree_pixels, 1500u);
+  EXPECT_GT(far.mean, 0.2);
+  EXPECT_LT(far.mean, 0.9) << "part of the crowns in the shadow of others";
+  EXPECT_GT(far.differing, 0u) << "the leaves read the map once";
+  EXPECT_LT(far.mean_abs, 0.03) << "once a leaf against per fragment, pixel by pixel";
+  EXPECT_LT(std::abs(far.mean_bias), 0.01) << "once a leaf against per fragment, on average";
+  // 6 m from the nearest crown with 40° of view a pixel spans about 2 cm: leaves of 5 px and more.
+  const Compared near = compare({-9.0f, 6.0f, -16.0f}, {-9.0f, 5.0f, -9.0f}, 40.0f);
+  EXPECT_GT(near.tree_pixels, size * size / 4);
+  EXPECT_GT(near.differing, 0u);
+  EXPECT_LT(near.mean_abs, 0.08);
+  EXPECT_LT(std::abs(near.mean_bias), 0.02);
 }

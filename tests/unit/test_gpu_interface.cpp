@@ -180,8 +180,8 @@ struct SpecDecl {
 const SpecDecl kSpecConstants[] = {
     {"tree_frag", "LEAF", SPEC_LEAF}, {"tree_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
     {"leaf_msaa_frag", "LEAF", SPEC_LEAF}, {"leaf_msaa_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
-    {"leaf_msaa_frag", "COVERAGE_SAMPLES", SPEC_COVERAGE_SAMPLES},
-    {"depth_pyramid_comp", "MINMAX_SAMPLER", SPEC_MINMAX_SAMPLER},
+    {"leaf_msaa_frag", "COVERAGE_SAMPLES", SPEC_COVERAGE_SAMPLES}, {"depth_pyramid_comp", "MINMAX_SAMPLER", SPEC_MINMAX_SAMPLER},
+    {"tree_frag", "LEAF_SHADOW_PER_FRAGMENT", SPEC_LEAF_SHADOW_PER_FRAGMENT}, {"leaf_msaa_frag", "LEAF_SHADOW_PER_FRAGMENT", SPEC_LEAF_SHADOW_PER_FRAGMENT},
 };
 
 struct AttrDecl {
@@ -328,8 +328,8 @@ TEST(GpuInterface, ShadersWereCompiledAndReflected) {
   // The pipelines of the renderer, depth pyramid and present pass.
   for (const char* expected : {"cull_comp", "tail_cull_comp", "pr_count_comp", "depth_pyramid_comp", "sky_vert",
                                "sky_frag", "terrain_vert", "terrain_frag", "branch_vert", "leaf_vert", "leaf_pulled_vert",
-                               "leaf_card_geom", "tree_frag", "pyramid_overlay_vert", "pyramid_overlay_frag", "present_vert",
-                               "present_frag"})
+                               "leaf_card_geom", "leaf_caster_vert", "leaf_caster_pulled_vert", "tree_frag",
+                               "pyramid_overlay_vert", "pyramid_overlay_frag", "present_vert", "present_frag"})
     EXPECT_TRUE(names.count(expected)) << expected << ".spv missing from " << FOREST_SHADER_DIR;
   // Every kind of resource the reflection lists is one the tests below check.
   const std::set<std::string> known = {"entryPoints", "types",           "inputs",           "outputs",

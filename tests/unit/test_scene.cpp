@@ -18,12 +18,15 @@ TEST(SceneFile, DefaultsAndValues) {
   EXPECT_EQ(s.camera.position, glm::vec3(1, 2, 3));
   EXPECT_FLOAT_EQ(s.camera.fov_deg, 40.0f);
   EXPECT_EQ(s.placement.count, 0u);
+  EXPECT_FALSE(s.leaf_shadows_per_fragment) << "a leaf reads the shadow map once unless asked";
+  EXPECT_TRUE(parse("[render]\nleaf_shadows = \"fragment\"\n").leaf_shadows_per_fragment);
 }
 
 TEST(SceneFile, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(error_of("[render]\nwidth = 320\nheigth = 2\n"),
-            "s.toml:3: render.heigth: unknown key (expected one of: width, height, samples, lod_error_pixels, mode, prune_distance, transition, view, occlusion, shadows, shadow_distance, shadow_resolution, exposure, quality, impostors)");
+            "s.toml:3: render.heigth: unknown key (expected one of: width, height, samples, lod_error_pixels, mode, prune_distance, transition, view, occlusion, shadows, shadow_distance, shadow_resolution, exposure, quality, impostors, leaf_shadows)");
   EXPECT_EQ(error_of("[render]\n\nwidth = -3\n"), "s.toml:3: render.width: must be in [16, 8192], got -3");
+  EXPECT_NE(error_of("[render]\nleaf_shadows = \"pixel\"\n").find("s.toml:2: render.leaf_shadows"), std::string::npos);
   EXPECT_EQ(error_of("[camera]\nfov = nan\n"), "s.toml:2: camera.fov: must be a finite number, got nan");
   EXPECT_EQ(error_of("[camera]\nfov = \"wide\"\n"), "s.toml:2: camera.fov: expected a number, got string");
   EXPECT_EQ(error_of("[placement]\ncount = 2.5\n"), "s.toml:2: placement.count: expected an integer, got 2.5");
