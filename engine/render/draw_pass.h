@@ -40,7 +40,7 @@ inline constexpr Binding kDrawBindings[] = {
 // leaf_shadows_per_fragment: leaves read the shadow map per fragment, not once a leaf
 // ([render] leaf_shadows = "fragment"; tree.frag, SPEC_LEAF_SHADOW_PER_FRAGMENT).
 DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples,
-                          bool leaf_shadows_per_fragment = false);
+                          bool leaf_shadows_per_fragment);
 void destroy_draw_pass(vk::Context& ctx, DrawPass& pass);
 
 // What one recording draws.

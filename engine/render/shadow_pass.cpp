@@ -53,7 +53,7 @@ ShadowPass create_shadow_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_
   leaves.vertex = "leaf_caster_vert";      // no light, and no read of the map being drawn
   leaves.fragment = "shadow_leaf_frag";  // the card's alpha cut-out
   p.leaves_instanced = vk::create_graphics_pipeline(ctx, layout, leaves);
-  if (vk::pull_leaves(ctx, leaves)) p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
+  if (vk::pull_leaves(ctx, leaves, "leaf_caster_pulled_vert")) p.leaves = vk::create_graphics_pipeline(ctx, layout, leaves);
   p.map = vk::create_image_array(ctx, {resolution, resolution}, SHADOW_CASCADES, kShadowFormat,
                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                  VK_IMAGE_ASPECT_DEPTH_BIT);

@@ -143,10 +143,9 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
   return pipeline;
 }
 
-bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves) {
+bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves, std::string_view vertex) {
   if (!ctx.geometry_shader) return false;
-  // The shadow pass's casters have their own vertex shader (leaf_body.glsl, LEAF_CASTER).
-  leaves.vertex = leaves.vertex == "leaf_caster_vert" ? "leaf_caster_pulled_vert" : "leaf_pulled_vert";
+  leaves.vertex = vertex;
   leaves.geometry = "leaf_card_geom";
   leaves.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
   leaves.vertex_input = false;

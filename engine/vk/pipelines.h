@@ -57,9 +57,10 @@ inline VkPipelineLayout create_pipeline_layout(Context& ctx, VkDescriptorSetLayo
 VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const GraphicsPipelineDesc& desc);
 
 // Makes `leaves` (a leaf pipeline of leaf.vert) the pulled form: one point a leaf from
-// leaf_pulled.vert, made a triangle by leaf_card.geom (shaders/leaf_draw.glsl). False, and
-// `leaves` unchanged, on a device without geometry shaders, which draws leaves instanced.
-bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves);
+// `vertex` (leaf_pulled.vert; the shadow pass's casters: leaf_caster_pulled.vert), made a
+// triangle by leaf_card.geom (shaders/leaf_draw.glsl). False, and `leaves` unchanged, on a
+// device without geometry shaders, which draws leaves instanced.
+bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves, std::string_view vertex = "leaf_pulled_vert");
 VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader);
 
 }  // namespace forest::vk
