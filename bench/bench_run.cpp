@@ -89,7 +89,6 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
   settings.shadows = mode.shadows;
   settings.impostors = mode.impostors ? ImpostorMode::switched : ImpostorMode::off;
   settings.mask = settings.lambda_view = settings.wireframe = false;
-  uint64_t terrain_and_sky = scene.terrain.mesh().indices.size() / 3 + 1;  // sky: one full-screen triangle
   uint64_t card_triangles = scene.models.empty() ? 0 : scene.models[0].leaf_card.indices.size() / 3;
 
   std::map<uint32_t, FrameImage> own_references;  // full-detail coverage per frame, unless the caller shares its own
@@ -125,6 +124,7 @@ std::vector<BenchFrame> play_bench_path(vk::Context& ctx, const Scene& scene, co
       for (uint32_t g = since; g < f.frame; ++g) draw(camera_at_frame(g));
     f.stats = draw(camera);
     const PipelineStats& ps = f.stats.draw_pipeline;
+    const uint64_t terrain_and_sky = uint64_t(f.stats.terrain_triangles) + 1;  // sky: one full-screen triangle
     f.tree_triangles = ps.available ? (ps.ia_primitives > terrain_and_sky ? ps.ia_primitives - terrain_and_sky : 0)
                                     : f.stats.branch_triangles + uint64_t(f.stats.leaves_drawn) * card_triangles;
     if (options.pr_every && i % options.pr_every == 0) {

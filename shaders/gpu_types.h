@@ -57,6 +57,7 @@ using mat4 = glm::mat4;
 #define SPEC_COVERAGE_SAMPLES 1   // leaf_msaa.frag (uint): the pipeline's samples, which the leaf alpha covers
 #define SPEC_COVERAGE_LATTICES 2  // tree.frag: bake coverage at every PR size in one render (PR_SIZES)
 #define SPEC_LEAF_SHADOW_PER_FRAGMENT 3  // tree.frag: leaves read the shadow map per fragment, not once a leaf (lighting.glsl)
+#define SPEC_VIEWS 4              // tree.frag: honours view_flags' mask, λ, shadow and impostor bake views (false: shaded only)
 #define SPEC_MINMAX_SAMPLER 0     // depth_pyramid.comp: levels >= 1 reduce with a MIN sampler
 
 // Vertex attribute locations of forest::Vertex (binding 0), in every vertex shader with inputs.

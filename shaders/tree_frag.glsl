@@ -14,6 +14,13 @@ layout(constant_id = SPEC_COVERAGE_SAMPLES) const uint COVERAGE_SAMPLES = 4u;
 #endif
 layout(constant_id = SPEC_COVERAGE_LATTICES) const bool COVERAGE_LATTICES = false;
 layout(constant_id = SPEC_LEAF_SHADOW_PER_FRAGMENT) const bool LEAF_SHADOW_PER_FRAGMENT = false;
+// The views other than the shaded picture (FrameData.view_flags: mask, λ, shadow visibility,
+// impostor bake) are read only where this is true: the shaded frame's pipelines set it false,
+// since lavapipe's fragment shaders pay for both sides of every branch, taken or not (draw_pass.h).
+layout(constant_id = SPEC_VIEWS) const bool VIEWS = true;
+
+// A view of FrameData.view_flags, never in the shaded pipelines.
+bool view(uint flag) { return VIEWS && (frame.view_flags & flag) != 0; }
 
 layout(set = 0, binding = BINDING_LEAF_TEXTURES) uniform sampler2DArray leaf_textures;
 layout(set = 0, binding = BINDING_BARK_ALBEDO) uniform sampler2DArray bark_albedo;
@@ -136,11 +143,11 @@ void branch_lattice_coverage() {
 // view camera (the bake's instance has no rotation and scale 1). The attachment is sRGB: the
 // normal and height are written decoded so that the stored bytes are the values themselves.
 bool impostor_bake_output(vec3 albedo, vec3 n) {
-  if ((frame.view_flags & VIEW_IMPOSTOR_ALBEDO) != 0) {
+  if (view(VIEW_IMPOSTOR_ALBEDO)) {
     out_color = vec4(albedo * (LEAF ? in_ao_translucency.x : 1.0), 1.0);
     return true;
   }
-  if ((frame.view_flags & VIEW_IMPOSTOR_NORMAL) != 0) {
+  if (view(VIEW_IMPOSTOR_NORMAL)) {
     float view_depth = dot(in_world - frame.camera_pos.xyz, frame.camera_forward.xyz);
     float height = clamp(0.5 + (frame.impostor.x - view_depth) * frame.impostor.y, 0.0, 1.0);
     out_color = vec4(srgb_to_linear(vec3(oct_encode_normal(n), height)), 1.0);
@@ -168,13 +175,13 @@ void main() {
 #endif
     albedo *= texel.rgb;
   }
-  if ((frame.view_flags & VIEW_MASK) != 0) {  // coverage for PR measurement
+  if (view(VIEW_MASK)) {  // coverage for PR measurement
     out_color = vec4(1.0, 1.0, 1.0, 1.0);
     return;
   }
   vec3 n = normalize(in_normal);
   if (!gl_FrontFacing) n = -n;
-  const bool lambda_view = (frame.view_flags & VIEW_LAMBDA) != 0;
+  const bool lambda_view = view(VIEW_LAMBDA);
   if (LEAF && !gl_FrontFacing && !lambda_view) {
     // The underside (abaxial side) of a leaf is paler and less saturated than the upper one:
     // fewer chloroplasts under a looser tissue, often hairs or wax.
@@ -190,7 +197,7 @@ void main() {
   // the pipeline reads it per fragment: a specialization, since lavapipe pays for both sides
   // of a branch.
   float sun_visibility = LEAF && !LEAF_SHADOW_PER_FRAGMENT ? in_fade_shadow.y : sun_shadow(in_world, n);
-  if ((frame.view_flags & VIEW_SHADOW) != 0) {
+  if (view(VIEW_SHADOW)) {
     out_color = vec4(vec3(sun_visibility), 1.0);
     return;
   }

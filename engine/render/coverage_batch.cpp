@@ -36,6 +36,7 @@ void Renderer::record_coverage_render(VkCommandBuffer cmd, const FrameSlot& slot
   list.background = false;
   list.lattices = true;
   list.instanced_leaves = (frame.view_flags & VIEW_LEAF_INSTANCED) != 0;
+  list.views = draws_a_view(frame.view_flags);
   // The bark once per PR size, each pass at the branch LOD the cull pass picks for a render at
   // that size (pixels per metre 2^b times fewer), then the leaves, all into one attachment.
   const uint32_t bark_passes = branches ? PR_SIZES : 0;

@@ -7,8 +7,9 @@ namespace forest {
 
 namespace {
 
+// views: tree.frag reads FrameData.view_flags (SPEC_VIEWS); the shaded picture's pipelines do not.
 DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples, bool wire,
-                              bool leaf_shadows_per_fragment) {
+                              bool leaf_shadows_per_fragment, bool views) {
   vk::GraphicsPipelineDesc d;
   d.color_format = kColorFormat;
   d.depth_format = kDepthFormat;
@@ -35,12 +36,14 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
   vk::GraphicsPipelineDesc branches = d;
   branches.vertex = "branch_vert";
   branches.fragment = "tree_frag";
+  branches.fragment_specialization = {{SPEC_VIEWS, views ? 1u : 0u}};
   p.branches = vk::create_graphics_pipeline(ctx, layout, branches);
   vk::GraphicsPipelineDesc leaves = branches;
   leaves.vertex = "leaf_vert";
   if (!wire) {
     leaves.cull = VK_CULL_MODE_NONE;  // leaf cards are two-sided
-    leaves.fragment_specialization = {{SPEC_LEAF, 1u}, {SPEC_LEAF_SHADOW_PER_FRAGMENT, leaf_shadows_per_fragment ? 1u : 0u}};
+    leaves.fragment_specialization.push_back({SPEC_LEAF, 1u});
+    leaves.fragment_specialization.push_back({SPEC_LEAF_SHADOW_PER_FRAGMENT, leaf_shadows_per_fragment ? 1u : 0u});
     if (samples > VK_SAMPLE_COUNT_1_BIT) {  // the leaf alpha becomes a sample mask (leaf_msaa.frag)
       leaves.fragment = "leaf_msaa_frag";
       leaves.fragment_specialization.push_back({SPEC_COVERAGE_SAMPLES, uint32_t(samples)});
@@ -138,7 +141,8 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& t, const DrawList
 DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCountFlagBits samples,
                           bool leaf_shadows_per_fragment) {
   DrawPass p;
-  p.fill = create_pipelines(ctx, layout, samples, false, leaf_shadows_per_fragment);
+  p.fill = create_pipelines(ctx, layout, samples, false, leaf_shadows_per_fragment, false);
+  p.views = create_pipelines(ctx, layout, samples, false, leaf_shadows_per_fragment, true);
   if (samples == VK_SAMPLE_COUNT_1_BIT) {
     vk::GraphicsPipelineDesc d;
     d.color_format = kColorFormat;
@@ -160,12 +164,13 @@ DrawPass create_draw_pass(vk::Context& ctx, VkPipelineLayout layout, VkSampleCou
     d.fragment_specialization = {{SPEC_COVERAGE_LATTICES, 1u}};
     p.lattice_branches = vk::create_graphics_pipeline(ctx, layout, d);
   }
-  if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true, leaf_shadows_per_fragment);
+  if (ctx.fill_mode_non_solid) p.wire = create_pipelines(ctx, layout, samples, true, leaf_shadows_per_fragment, true);
   return p;
 }
 
 void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
   destroy_pipelines(ctx, p.fill);
+  destroy_pipelines(ctx, p.views);
   destroy_pipelines(ctx, p.wire);
   vkDestroyPipeline(ctx.device, p.lattice_leaves, nullptr);
   vkDestroyPipeline(ctx.device, p.lattice_leaves_instanced, nullptr);
@@ -176,7 +181,7 @@ void destroy_draw_pass(vk::Context& ctx, DrawPass& p) {
 void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
                       const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
                       const RenderTargets& targets, const DrawList& list) {
-  const DrawPipelines& p = list.wireframe ? pass.wire : pass.fill;
+  const DrawPipelines& p = list.wireframe ? pass.wire : list.views ? pass.views : pass.fill;
   begin_targets(cmd, targets, list.keep_color);
   begin_rendering(cmd, targets, list);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
@@ -193,7 +198,7 @@ void record_draw_pass(VkCommandBuffer cmd, const DrawPass& pass, VkPipelineLayou
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.fill.sky);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.terrain);
-    vkCmdDrawIndexed(cmd, scene.terrain_index_count, 1, 0, 0, 0);
+    for (const IndexRange& r : list.terrain) vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
   }
   if (n > 0 && list.branches) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, list.lattices ? pass.lattice_branches : p.branches);

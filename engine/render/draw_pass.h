@@ -3,12 +3,15 @@
 // for every picture the renderer makes: frames, PR coverage references and batched PR bakes
 // (coverage masks draw only trees, white, through the same pipelines).
 #pragma once
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "engine/render/cull_pass.h"
 #include "engine/render/impostor_pass.h"
 #include "engine/render/render_targets.h"
 #include "engine/render/scene_buffers.h"
+#include "engine/render/terrain_cull.h"
 
 namespace forest {
 
@@ -19,7 +22,8 @@ struct DrawPipelines {
 };
 
 struct DrawPass {
-  DrawPipelines fill;
+  DrawPipelines fill;   // the shaded picture: tree.frag without the other views (SPEC_VIEWS false)
+  DrawPipelines views;  // every FrameData view (mask, λ, shadow visibility, impostor bake)
   DrawPipelines wire;  // edges only; null where the device lacks fillModeNonSolid
   // Bake coverage of the leaves at every PR size in one render (tree.frag, SPEC_COVERAGE_LATTICES):
   // no depth test, MAX blending. Single-sampled renderers only.
@@ -57,7 +61,14 @@ struct DrawList {
   bool keep_color = false;  // load the colour attachment (a frame drawn in several passes), not clear it
   bool instanced_leaves = false;  // the cull pass wrote instanced leaf draws (VIEW_LEAF_INSTANCED)
   bool impostors = false;         // the cull pass may have listed impostors (impostor_pass.h)
+  bool views = false;  // FrameData.view_flags asks for a view other than the shaded picture
+  std::vector<IndexRange> terrain;  // with a background: the terrain chunks the camera sees
+  std::array<std::vector<IndexRange>, SHADOW_CASCADES> shadow_terrain;  // with shadows: each cascade's
 };
+
+// Whether a frame with these FrameData.view_flags draws through DrawPass::views: every flag
+// but the leaf draw's form is a view that the shaded pipelines do not read.
+inline bool draws_a_view(uint32_t view_flags) { return (view_flags & ~uint32_t(VIEW_LEAF_INSTANCED)) != 0; }
 
 // Records the draw (set 0 bound to the graphics bind point by the caller). Before: the cull
 // pass's writes are visible to indirect and vertex reads. After: the colour image is in

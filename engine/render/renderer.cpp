@@ -203,7 +203,8 @@ void Renderer::record_scene(VkCommandBuffer cmd, const FrameSlot& slot, const Dr
                          VK_ACCESS_2_TRANSFER_READ_BIT);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, slot.timestamps, kCullEnd);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowStart);
-  if (list.shadows) record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_, impostors_, list.instanced_leaves);
+  if (list.shadows)
+    record_shadow_pass(cmd, shadow_, layout_, slot.set, buffers_, cull_, impostors_, list.instanced_leaves, list.shadow_terrain);
   if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.timestamps, kShadowEnd);
   if (timed) begin_gpu_stats(cmd, slot.pipeline_stats, StatsPass::draw);
   record_draw_pass(cmd, draw_, layout_, slot.set, buffers_, cull_, impostors_, targets_, list);
@@ -438,6 +439,17 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   list.receiver_mask = list.shadows && fd.receiver_mask == 1;
   list.impostors = settings.impostors != ImpostorMode::off;
   list.instanced_leaves = (fd.view_flags & VIEW_LEAF_INSTANCED) != 0;
+  list.views = draws_a_view(fd.view_flags);
+  // The terrain where a view sees it: the camera's side and near planes (its projection has no
+  // far plane), a cascade's four sides (toward and away from the sun it holds every caster).
+  uint32_t terrain_indices = 0;
+  if (list.background) {
+    list.terrain = visible_chunks(buffers_.terrain_chunks, std::span(cm.frustum).first(5));
+    for (const IndexRange& r : list.terrain) terrain_indices += r.count;
+  }
+  if (list.shadows)
+    for (uint32_t c = 0; c < SHADOW_CASCADES; ++c)
+      list.shadow_terrain[c] = visible_chunks(buffers_.terrain_chunks, std::span(&fd.shadow_planes[c * 6], 4));
   // The overlay shows the pyramid this frame's cull pass read: one built by an earlier frame.
   const bool overlay = settings.pyramid_overlay && settings.occlusion && !settings.mask && pyramid_valid_;
   record_frame(slot, output, list, settings.occlusion, overlay);
@@ -448,6 +460,7 @@ void Renderer::prepare_frame(FrameSlot& slot, const CameraDesc& camera, const Fr
   pyramid_camera_ = camera;
   slot.stats = {};
   slot.stats.instances = buffers_.instance_count;
+  slot.stats.terrain_triangles = terrain_indices / 3;
   slot.stats.camera_cut = cut;
   slot.stats.cpu_submit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
 }

@@ -100,6 +100,7 @@ struct FrameStats {
   uint32_t leaf_draws = 0;
   uint32_t leaves_drawn = 0;
   uint32_t branch_triangles = 0;
+  uint32_t terrain_triangles = 0;  // drawn by the draw pass (the chunks the camera sees, terrain_cull.h)
   uint32_t lod_draws[MAX_BRANCH_LODS] = {};  // visible trees per branch LOD level
   double mean_lambda = 0.0;                   // over visible trees
   uint32_t occluded_instances = 0;  // in the frustum, culled by occlusion

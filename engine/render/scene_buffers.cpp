@@ -192,7 +192,7 @@ SceneBuffers upload_scene(vk::Context& ctx, const Scene& scene) {
   SceneArrays a;
   Mesh terrain = scene.terrain.mesh();
   a.append(terrain);
-  b.terrain_index_count = uint32_t(terrain.indices.size());
+  b.terrain_chunks = scene.terrain.chunks();
   for (const TreeModel& tm : scene.models) {
     gpu::Model m{};
     m.bounding_sphere = tm.bounding_sphere;

@@ -22,7 +22,7 @@ struct SceneBuffers {
   vk::Image impostor_albedo, impostor_normals;  // impostor_textures.h: layer 0 empty
   VkSampler impostor_sampler = VK_NULL_HANDLE;  // clamp, trilinear
   uint32_t instance_count = 0;
-  uint32_t terrain_index_count = 0;  // the terrain is the first mesh of `indices`
+  std::vector<TerrainChunk> terrain_chunks;  // the terrain, the first mesh of `indices`, by block
   uint64_t instance_leaves = 0;      // Σ over instances of its model's leaf count
   // Every model's leaf card is a quad, drawn as one triangle (Model::card_corners, leaf_card.h):
   // leaves may be drawn by vertex pulling (leaf_draw.glsl); else only as instances.

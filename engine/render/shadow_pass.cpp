@@ -102,7 +102,7 @@ void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& p) {
 
 void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayout layout, VkDescriptorSet set,
                         const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
-                        bool instanced_leaves) {
+                        bool instanced_leaves, std::span<const std::vector<IndexRange>, SHADOW_CASCADES> terrain) {
   const VkPipelineStageFlags2 tests = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   // After the previous frame's shading read the map.
   vk::image_barrier(cmd, p.map.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -135,7 +135,7 @@ void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& p, VkPipelineLayo
     gpu::DrawPush push{0, c};
     vkCmdPushConstants(cmd, layout, kDrawPushRange.stageFlags, kDrawPushRange.offset, sizeof(push), &push);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.terrain);
-    vkCmdDrawIndexed(cmd, scene.terrain_index_count, 1, 0, 0, 0);
+    for (const IndexRange& r : terrain[c]) vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
     if (n > 0) {
       push.command_base = base;
       vkCmdPushConstants(cmd, layout, kDrawPushRange.stageFlags, kDrawPushRange.offset, sizeof(push), &push);

@@ -7,11 +7,14 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "engine/render/cull_pass.h"
 #include "engine/render/descriptor_table.h"
 #include "engine/render/impostor_pass.h"
 #include "engine/render/scene_buffers.h"
+#include "engine/render/terrain_cull.h"
 #include "gpu_types.h"
 
 namespace forest {
@@ -59,6 +62,6 @@ void record_shadow_cull(VkCommandBuffer cmd, const ShadowPass& pass);
 // SHADER_READ_ONLY_OPTIMAL, its writes visible to fragment shaders.
 void record_shadow_pass(VkCommandBuffer cmd, const ShadowPass& pass, VkPipelineLayout layout, VkDescriptorSet set,
                         const SceneBuffers& scene, const CullPass& cull, const ImpostorPass& impostors,
-                        bool instanced_leaves);
+                        bool instanced_leaves, std::span<const std::vector<IndexRange>, SHADOW_CASCADES> terrain);
 
 }  // namespace forest

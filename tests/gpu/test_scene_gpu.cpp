@@ -70,7 +70,6 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
   // A leaf is one triangle around its card quad (engine/render/leaf_card.h), not the quad's two.
   ASSERT_EQ(m.leaf_card.indices.size(), 6u);
   const uint64_t card_triangles = 1;
-  const uint64_t terrain_triangles = s.terrain.mesh().indices.size() / 3;
   for (bool mask : {false, true}) {
     FrameSettings fs;
     fs.mask = mask;
@@ -82,7 +81,9 @@ TEST_F(SceneGpuTest, PipelineStatisticsMatchIndirectDrawCounts) {
     // triangle and the terrain (not in mask mode), the bark of every visible tree at its
     // chosen LOD and k leaves per tree, each one point (leaf_card.geom makes its triangle).
     const uint64_t leaves = uint64_t(st.leaves_drawn) * card_triangles;
-    uint64_t expected = uint64_t(st.branch_triangles) + leaves + (mask ? 0 : 1 + terrain_triangles);
+    // The terrain's chunks in view (terrain_cull.h; this terrain is one chunk).
+    EXPECT_EQ(st.terrain_triangles, mask ? 0u : s.terrain.mesh().indices.size() / 3);
+    uint64_t expected = uint64_t(st.branch_triangles) + leaves + (mask ? 0 : 1 + st.terrain_triangles);
     EXPECT_EQ(st.draw_pipeline.ia_primitives, expected) << (mask ? "mask" : "shaded");
     EXPECT_EQ(st.draw_pipeline.ia_vertices, 3 * (expected - leaves) + leaves);  // triangle and point lists
     // Every leaf whose size the pruning transition left above zero becomes a triangle.

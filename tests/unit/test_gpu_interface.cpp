@@ -182,7 +182,7 @@ const SpecDecl kSpecConstants[] = {
     {"leaf_msaa_frag", "LEAF", SPEC_LEAF}, {"leaf_msaa_frag", "COVERAGE_LATTICES", SPEC_COVERAGE_LATTICES},
     {"leaf_msaa_frag", "COVERAGE_SAMPLES", SPEC_COVERAGE_SAMPLES}, {"depth_pyramid_comp", "MINMAX_SAMPLER", SPEC_MINMAX_SAMPLER},
     {"tree_frag", "LEAF_SHADOW_PER_FRAGMENT", SPEC_LEAF_SHADOW_PER_FRAGMENT}, {"leaf_msaa_frag", "LEAF_SHADOW_PER_FRAGMENT", SPEC_LEAF_SHADOW_PER_FRAGMENT},
-};
+    {"tree_frag", "VIEWS", SPEC_VIEWS}, {"leaf_msaa_frag", "VIEWS", SPEC_VIEWS}};
 
 struct AttrDecl {
   const char* name;  // the GLSL vertex input
