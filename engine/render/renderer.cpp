@@ -349,9 +349,13 @@ gpu::FrameData Renderer::frame_data(const CameraDesc& camera, const CameraMatric
   // given as the perspective one that matches it at the target.
   float pixels_per_meter = camera.ortho_height > 0.0f
                                ? float(height_) / camera.ortho_height * glm::distance(camera.position, camera.target)
-                               : float(height_) / (2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f));
+                               : focal_pixels(float(height_), camera.fov_deg);
   fd.lod = glm::vec4(pixels_per_meter, scene_.desc.lod_error_pixels, 0.0f, 0.0f);
-  fd.prune = glm::vec4(scene_.desc.prune_distance, scene_.desc.transition,
+  // The prune distance of the frame the scene states it for, scaled to this frame's pixels: a
+  // tree prunes alike where it covers as many pixels (SceneDesc::prune_focal_pixels).
+  const float focal = scene_.desc.prune_focal_pixels;
+  const float prune_distance = scene_.desc.prune_distance * (focal > 0.0f ? pixels_per_meter / focal : 1.0f);
+  fd.prune = glm::vec4(prune_distance, scene_.desc.transition,
                        settings.prune_mode == PruneMode::target ? settings.quality : settings.fixed_lambda,
                        settings.fixed_scale);
   fd.lod_camera = glm::vec4(settings.lod_camera ? *settings.lod_camera : cm.position, 1.0f);

@@ -23,6 +23,10 @@ struct CameraMatrices {
 
 CameraMatrices camera_matrices(const CameraDesc& camera, float aspect);
 
+// A perspective frame's focal length in pixels, height / (2 tan(fov / 2)): a sphere of radius r
+// at distance z (r << z) covers about 2 · r · focal_pixels / z pixels.
+float focal_pixels(float height, float fov_deg);
+
 // Clip-space projection of a world point to pixel coordinates (x right, y down); z = depth.
 glm::vec3 project_to_pixel(const CameraMatrices& m, glm::vec3 world, float width, float height);
 

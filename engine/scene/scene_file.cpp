@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/scene/camera.h"
 #include "generators/core/limits.h"
 #include "generators/core/toml_reader.h"
 #include "gpu_types.h"
@@ -185,6 +186,7 @@ SceneDesc read_scene(const TomlTable& root, const std::filesystem::path& base) {
   root.check_keys({"render", "camera", "sky", "terrain", "species", "placement", "tree", "path", "bake"});
   if (auto t = root.table("render")) read_render(*t, s);
   if (auto t = root.table("camera")) read_camera(*t, s.camera);
+  s.prune_focal_pixels = focal_pixels(float(s.height), s.camera.fov_deg);
   if (auto t = root.table("sky")) read_sky(*t, s.sky);
   if (auto t = root.table("terrain")) read_terrain(*t, s.terrain, base);
   if (auto t = root.table("bake")) read_bake(*t, s.bake);

@@ -114,6 +114,11 @@ struct SceneDesc {
   float lod_error_pixels = 1.0f;  // branch LOD: allowed projected error; 0 = always LOD0
   PruneMode prune_mode = PruneMode::full;  // [render] mode
   float prune_distance = 400.0f;  // meters at which the normalized distance d reaches 1
+  // The frame prune_distance is stated for, as its focal length in pixels (height / (2 tan(fov / 2))):
+  // a scene file's own [render] height and [camera] fov. A frame of another height or fov scales
+  // the distance by its own focal length over this one, so a tree prunes alike wherever it covers
+  // as many pixels (Cook et al. 2007 prune by screen size). 0: the distance is used as given.
+  float prune_focal_pixels = 0.0f;
   float quality = 0.95f;          // [render] quality: the PR quality Q mode "target" keeps per tree
   float transition = 0.1f;        // Cook's transition band t: fraction of the prefix that shrinks
   bool lambda_view = false;       // [render] view = "lambda": color trees by detail level

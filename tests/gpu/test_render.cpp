@@ -271,33 +271,69 @@ TEST_F(GpuTest, TurntableFramesTheModel) {
   EXPECT_EQ(0, std::memcmp(sheet.pixel(4 + 96 + 4, 4 + 96 + 4), views[3].pixel(0, 0), 4));
 }
 
-TEST_F(GpuTest, CookLeafCountsMatchCpuReference) {
-  // Every tree visible from above; the GPU's per-tree λ = (1 − d)² and k = ⌈λN⌉ summed must
-  // equal the same arithmetic (shaders/prune_math.h) done here.
-  Rendered r = render(SceneText{.render = "mode = \"cook\"\nprune_distance = 220\n",
-                                 .position = {0.0f, 150.0f, -1.0f},
-                                 .target = {0.0f, 0.0f, 0.0f},
-                                 .extra = "[placement]\ncount = 300\nseed = 9\nmin_spacing = 2.0\nradius = 60\n"}
-                          .str());
-  ASSERT_EQ(r.stats.branch_draws, 300u);
-  const TreeModel& m = r.scene.models[0];
-  uint64_t expected = 0;
+namespace {
+
+// Cook's leaves for every tree of `scene` seen from `camera`, done on the CPU with the
+// shaders' arithmetic (shaders/prune_math.h): per tree λ = (1 − d)², d = distance ÷
+// `prune_distance`, and k = ⌈λN⌉ leaves; the sum of k, and the mean λ.
+std::pair<uint64_t, double> cook_reference(const Scene& scene, glm::vec3 camera, float prune_distance) {
+  const TreeModel& m = scene.models[0];
+  uint64_t leaves = 0;
   double lambda_sum = 0;
-  for (const gpu::Instance& inst : r.scene.instances) {
+  for (const gpu::Instance& inst : scene.instances) {
     glm::vec3 c = glm::vec3(inst.position_scale) +
                   glm::vec3(inst.yaw_cos_sin.x * m.bounding_sphere.x + inst.yaw_cos_sin.y * m.bounding_sphere.z,
                             m.bounding_sphere.y,
                             -inst.yaw_cos_sin.y * m.bounding_sphere.x + inst.yaw_cos_sin.x * m.bounding_sphere.z) *
                       inst.position_scale.w;
-    float d = std::clamp(glm::distance(c, r.scene.desc.camera.position) / 220.0f, 0.0f, 1.0f);
-    float lambda = prune::lambda_cook(d);
+    float lambda = prune::lambda_cook(std::clamp(glm::distance(c, camera) / prune_distance, 0.0f, 1.0f));
     lambda_sum += lambda;
-    expected += prune::leaf_prefix(lambda, uint32_t(m.leaves.size()));
+    leaves += prune::leaf_prefix(lambda, uint32_t(m.leaves.size()));
   }
+  return {leaves, lambda_sum / double(scene.instances.size())};
+}
+
+const SceneText kCookStand{.render = "mode = \"cook\"\nprune_distance = 220\n",
+                           .position = {0.0f, 150.0f, -1.0f},
+                           .target = {0.0f, 0.0f, 0.0f},
+                           .extra = "[placement]\ncount = 300\nseed = 9\nmin_spacing = 2.0\nradius = 60\n"};
+
+}  // namespace
+
+TEST_F(GpuTest, CookLeafCountsMatchCpuReference) {
+  // Every tree visible from above; the GPU's per-tree λ = (1 − d)² and k = ⌈λN⌉ summed must
+  // equal the same arithmetic done here.
+  Rendered r = render(kCookStand.str());
+  ASSERT_EQ(r.stats.branch_draws, 300u);
+  auto [expected, mean_lambda] = cook_reference(r.scene, r.scene.desc.camera.position, 220.0f);
   // ±1 leaf per tree for float rounding differences between the GPU and the CPU.
   EXPECT_NEAR(double(r.stats.leaves_drawn), double(expected), 300.0);
-  EXPECT_LT(r.stats.leaves_drawn, 300u * m.leaves.size() / 2) << "Cook at d ~ 0.7 should drop most leaves";
-  EXPECT_NEAR(r.stats.mean_lambda, lambda_sum / 300.0, 1e-3);
+  EXPECT_LT(r.stats.leaves_drawn, 300u * r.scene.models[0].leaves.size() / 2) << "Cook at d ~ 0.7 should drop most leaves";
+  EXPECT_NEAR(r.stats.mean_lambda, mean_lambda, 1e-3);
+}
+
+TEST_F(GpuTest, PruneDistanceScalesWithTheFramesPixels) {
+  // The scene states prune_distance for its own 120-pixel-high frame at fov 50°. Twice the
+  // height shows every tree on more pixels, half of it or a wider fov on fewer: the distance
+  // scales by the focal lengths' ratio, so a tree keeps the λ it has where it covers as many pixels.
+  SceneDesc desc = parse_scene(kCookStand.str());
+  Scene scene = build_scene(desc);
+  const float focal = focal_pixels(120.0f, 50.0f);
+  ASSERT_FLOAT_EQ(scene.desc.prune_focal_pixels, focal);
+  struct Frame { uint32_t width, height; float fov; };
+  for (Frame f : {Frame{320, 240, 50.0f}, Frame{80, 60, 50.0f}, Frame{160, 120, 70.0f}}) {
+    SCOPED_TRACE(std::to_string(f.height) + " px high, fov " + std::to_string(f.fov));
+    CameraDesc camera = desc.camera;
+    camera.fov_deg = f.fov;
+    Renderer renderer(ctx_, scene, f.width, f.height, 1);
+    FrameStats st = renderer.render(camera, nullptr);
+    const float distance = 220.0f * focal_pixels(float(f.height), f.fov) / focal;
+    auto [expected, mean_lambda] = cook_reference(scene, camera.position, distance);
+    auto [unscaled, unscaled_lambda] = cook_reference(scene, camera.position, 220.0f);
+    ASSERT_GT(std::abs(double(expected) - double(unscaled)), 3000.0);  // the frames differ enough to tell
+    EXPECT_NEAR(double(st.leaves_drawn), double(expected), 300.0);
+    EXPECT_NEAR(st.mean_lambda, mean_lambda, 1e-3);
+  }
 }
 
 TEST_F(GpuTest, OptAtFullDetailEqualsFull) {
