@@ -19,7 +19,7 @@ DrawPipelines create_pipelines(vk::Context& ctx, VkPipelineLayout layout, VkSamp
     d.cull = VK_CULL_MODE_NONE;
   }
   DrawPipelines p;
-  if (!wire) {  // the sky has no wire variant
+  if (!wire && !views) {  // one sky for every frame: DrawPass::fill's (record_draw_pass)
     vk::GraphicsPipelineDesc sky = d;
     sky.vertex = "sky_vert";
     sky.fragment = "sky_frag";

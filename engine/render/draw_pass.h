@@ -16,7 +16,8 @@
 namespace forest {
 
 struct DrawPipelines {
-  VkPipeline sky = VK_NULL_HANDLE, terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE;
+  VkPipeline sky = VK_NULL_HANDLE;  // fill only: every frame draws the sky through it
+  VkPipeline terrain = VK_NULL_HANDLE, branches = VK_NULL_HANDLE;
   VkPipeline leaves = VK_NULL_HANDLE;            // vertex pulling (leaf_pulled.vert), no vertex input
   VkPipeline leaves_instanced = VK_NULL_HANDLE;  // instances of the card (leaf.vert): VIEW_LEAF_INSTANCED
 };

@@ -79,6 +79,19 @@ glm::vec3 Terrain::normal_at(float x, float z) const {
   return glm::normalize(glm::vec3(-dx, 2.0f * e, -dz));
 }
 
+namespace {
+
+// The terrain's blocks of kTerrainChunkCells² cells in the order mesh() writes their indices
+// and chunks() lists them: f(first cell i, first cell j, end i, end j) per block.
+template <class F>
+void for_each_block(uint32_t resolution, F&& f) {
+  for (uint32_t cj = 0; cj < resolution; cj += kTerrainChunkCells)
+    for (uint32_t ci = 0; ci < resolution; ci += kTerrainChunkCells)
+      f(ci, cj, std::min(ci + kTerrainChunkCells, resolution), std::min(cj + kTerrainChunkCells, resolution));
+}
+
+}  // namespace
+
 Mesh Terrain::mesh() const {
   Mesh m;
   uint32_t n = desc.resolution + 1;
@@ -94,14 +107,14 @@ Mesh Terrain::mesh() const {
       m.vertices.push_back(v);
     }
   m.indices.reserve(size_t(desc.resolution) * desc.resolution * 6);
-  for (uint32_t cj = 0; cj < desc.resolution; cj += kTerrainChunkCells)
-    for (uint32_t ci = 0; ci < desc.resolution; ci += kTerrainChunkCells)
-      for (uint32_t j = cj; j < std::min(cj + kTerrainChunkCells, desc.resolution); ++j)
-        for (uint32_t i = ci; i < std::min(ci + kTerrainChunkCells, desc.resolution); ++i) {
-          uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-          // (i,j) -> (i,j+1) -> (i+1,j) is counter-clockwise seen from +Y.
-          m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
-        }
+  for_each_block(desc.resolution, [&](uint32_t ci, uint32_t cj, uint32_t ie, uint32_t je) {
+    for (uint32_t j = cj; j < je; ++j)
+      for (uint32_t i = ci; i < ie; ++i) {
+        uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+        // (i,j) -> (i,j+1) -> (i+1,j) is counter-clockwise seen from +Y.
+        m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+      }
+  });
   return m;
 }
 
@@ -110,21 +123,18 @@ std::vector<TerrainChunk> Terrain::chunks() const {
   const float cell = desc.size / float(desc.resolution);
   std::vector<TerrainChunk> out;
   uint32_t first = 0;
-  for (uint32_t cj = 0; cj < desc.resolution; cj += kTerrainChunkCells)
-    for (uint32_t ci = 0; ci < desc.resolution; ci += kTerrainChunkCells) {
-      const uint32_t je = std::min(cj + kTerrainChunkCells, desc.resolution);
-      const uint32_t ie = std::min(ci + kTerrainChunkCells, desc.resolution);
-      TerrainChunk c;
-      c.first_index = first;
-      c.index_count = (je - cj) * (ie - ci) * 6;
-      float lo = INFINITY, hi = -INFINITY;
-      for (uint32_t j = cj; j <= je; ++j)
-        for (uint32_t i = ci; i <= ie; ++i) lo = std::min(lo, heights[size_t(j) * n + i]), hi = std::max(hi, heights[size_t(j) * n + i]);
-      c.min = {-0.5f * desc.size + float(ci) * cell, lo, -0.5f * desc.size + float(cj) * cell};
-      c.max = {-0.5f * desc.size + float(ie) * cell, hi, -0.5f * desc.size + float(je) * cell};
-      first += c.index_count;
-      out.push_back(c);
-    }
+  for_each_block(desc.resolution, [&](uint32_t ci, uint32_t cj, uint32_t ie, uint32_t je) {
+    TerrainChunk c;
+    c.first_index = first;
+    c.index_count = (je - cj) * (ie - ci) * 6;
+    float lo = INFINITY, hi = -INFINITY;
+    for (uint32_t j = cj; j <= je; ++j)
+      for (uint32_t i = ci; i <= ie; ++i) lo = std::min(lo, heights[size_t(j) * n + i]), hi = std::max(hi, heights[size_t(j) * n + i]);
+    c.min = {-0.5f * desc.size + float(ci) * cell, lo, -0.5f * desc.size + float(cj) * cell};
+    c.max = {-0.5f * desc.size + float(ie) * cell, hi, -0.5f * desc.size + float(je) * cell};
+    first += c.index_count;
+    out.push_back(c);
+  });
   return out;
 }
 
