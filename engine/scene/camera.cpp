@@ -7,10 +7,6 @@
 
 namespace forest {
 
-float focal_pixels(float height, float fov_deg) {
-  return height / (2.0f * std::tan(glm::radians(fov_deg) * 0.5f));
-}
-
 CameraMatrices camera_matrices(const CameraDesc& camera, float aspect) {
   CameraMatrices m;
   m.position = camera.position;

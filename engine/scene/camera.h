@@ -3,6 +3,7 @@
 // with CameraDesc::ortho_height an orthographic projection (measurements).
 #pragma once
 #include <array>
+#include <cmath>
 
 #include <glm/glm.hpp>
 
@@ -25,7 +26,7 @@ CameraMatrices camera_matrices(const CameraDesc& camera, float aspect);
 
 // A perspective frame's focal length in pixels, height / (2 tan(fov / 2)): a sphere of radius r
 // at distance z (r << z) covers about 2 · r · focal_pixels / z pixels.
-float focal_pixels(float height, float fov_deg);
+inline float focal_pixels(float height, float fov_deg) { return height / (2.0f * std::tan(glm::radians(fov_deg) * 0.5f)); }
 
 // Clip-space projection of a world point to pixel coordinates (x right, y down); z = depth.
 glm::vec3 project_to_pixel(const CameraMatrices& m, glm::vec3 world, float width, float height);
