@@ -8,6 +8,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "engine/scene/camera.h"
 #include "engine/tools/gallery/contact_sheet.h"
 #include "prune_math.h"
 
@@ -360,9 +361,9 @@ std::vector<CameraDesc> pr_views(glm::vec4 sphere, uint32_t views, uint32_t size
 CameraDesc pr_view_camera(glm::vec4 sphere, float azimuth, float elevation, uint32_t size0, uint32_t resolution) {
   CameraDesc cam;
   cam.fov_deg = 30.0f;
-  // prune::projected_size(r, D, k) = size0 with k = resolution / (2 tan(fov / 2)).
+  // prune::projected_size(r, D, k) = size0 with k = the frame's focal length in pixels.
   const float r = std::max(sphere.w, 1e-3f);
-  const float k = float(resolution) / (2.0f * std::tan(glm::radians(cam.fov_deg) * 0.5f));
+  const float k = focal_pixels(float(resolution), cam.fov_deg);
   const float along = 2.0f * k * r / float(size0);  // √(D² − r²)
   const float distance = std::sqrt(along * along + r * r);
   cam.target = glm::vec3(sphere);
