@@ -52,12 +52,16 @@ float visible_fraction(Instance inst, Model m) {
 // where it spans at most 2x2 texels, all four of which are read.
 bool sphere_hidden(vec3 center, float radius) {
   float near = frame.prev_camera.w;
-  float w_center = (frame.prev_view_proj * vec4(center, 1.0)).w;  // view distance along the axis
+  // The projection is linear, so a corner's clip position is the centre's plus ± the
+  // matrix's first three columns times the radius: one matrix product for all eight (the
+  // tail pass runs this once per leaf).
+  vec4 clip_center = frame.prev_view_proj * vec4(center, 1.0);
+  float w_center = clip_center.w;  // view distance along the axis
   if (w_center - radius <= near) return false;
+  vec4 ax = frame.prev_view_proj[0] * radius, ay = frame.prev_view_proj[1] * radius, az = frame.prev_view_proj[2] * radius;
   vec2 lo = vec2(1.0), hi = vec2(0.0);
   for (int c = 0; c < 8; ++c) {
-    vec3 corner = center + radius * vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
-    vec4 clip = frame.prev_view_proj * vec4(corner, 1.0);
+    vec4 clip = clip_center + ((c & 1) != 0 ? ax : -ax) + ((c & 2) != 0 ? ay : -ay) + ((c & 4) != 0 ? az : -az);
     if (clip.w <= near) return false;
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     lo = min(lo, uv), hi = max(hi, uv);

@@ -13,7 +13,8 @@ CullPass create_cull_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_t in
   p.instance_count = instance_count;
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const uint32_t n = std::max(instance_count, 1u);
-  p.commands = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * COMMANDS_PER_INSTANCE * n, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+  p.commands = vk::create_buffer(ctx, sizeof(gpu::DrawCommand) * COMMANDS_PER_INSTANCE * n,
+                                 storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  vk::MemoryUse::device);
   p.counts = vk::create_buffer(ctx, sizeof(gpu::DrawCounts),
                                storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |

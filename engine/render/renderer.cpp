@@ -166,20 +166,46 @@ bool Renderer::camera_cut(const CameraMatrices& cm, const CameraDesc& camera, co
   return glm::dot(before, cm.forward) < std::cos(glm::radians(kCutAngleDeg));
 }
 
-std::vector<gpu::InstanceState> Renderer::instance_states() {
-  drain();
-  std::vector<gpu::InstanceState> out(buffers_.instance_count);
+namespace {
+
+// `count` elements of T from `src` at byte `offset`, after the device is idle.
+template <class T>
+std::vector<T> read_back(vk::Context& ctx, const vk::Buffer& src, size_t count, VkDeviceSize offset = 0) {
+  std::vector<T> out(count);
   if (out.empty()) return out;
-  VkDeviceSize bytes = sizeof(gpu::InstanceState) * out.size();
-  vk::Buffer readback = vk::create_buffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
-  vk::submit_now(ctx_, [&](VkCommandBuffer cmd) {
-    VkBufferCopy copy{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, cull_.instance_states.buffer, readback.buffer, 1, &copy);
+  VkDeviceSize bytes = sizeof(T) * out.size();
+  vk::Buffer readback = vk::create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::readback);
+  vk::submit_now(ctx, [&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{offset, 0, bytes};
+    vkCmdCopyBuffer(cmd, src.buffer, readback.buffer, 1, &copy);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   });
   std::memcpy(out.data(), readback.mapped, bytes);
-  vk::destroy_buffer(ctx_, readback);
+  vk::destroy_buffer(ctx, readback);
+  return out;
+}
+
+}  // namespace
+
+std::vector<gpu::InstanceState> Renderer::instance_states() {
+  drain();
+  return read_back<gpu::InstanceState>(ctx_, cull_.instance_states, buffers_.instance_count);
+}
+
+std::vector<Renderer::TailList> Renderer::tail_lists(bool instanced_leaves) {
+  drain();
+  gpu::DrawCounts counts = read_back<gpu::DrawCounts>(ctx_, cull_.counts, 1)[0];
+  std::vector<gpu::TailJob> jobs = read_back<gpu::TailJob>(ctx_, tail_cull_.jobs, counts.tail_jobs);
+  std::vector<uint32_t> leaves = read_back<uint32_t>(ctx_, tail_cull_.leaves, tail_cull_.capacity);
+  std::vector<TailList> out;
+  for (const gpu::TailJob& job : jobs) {
+    gpu::DrawCommand d = read_back<gpu::DrawCommand>(ctx_, cull_.commands, 1, sizeof(gpu::DrawCommand) * job.command)[0];
+    uint32_t kept = instanced_leaves ? d.instance_count : d.index_count / LEAF_POINT_INDICES;  // set_leaf_count
+    TailList t{job, d.leaf_list, kept, {}};
+    if (job.base + uint64_t(kept) <= leaves.size()) t.leaves.assign(leaves.begin() + job.base, leaves.begin() + job.base + kept);
+    out.push_back(std::move(t));
+  }
   return out;
 }
 

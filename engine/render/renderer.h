@@ -205,6 +205,17 @@ class Renderer {
 
   // Occlusion feedback state of every instance, read back from the GPU (tests, tools).
   std::vector<gpu::InstanceState> instance_states();
+  // The last frame's tail lists (tail_cull.comp), read back from the GPU (tests): per job, the
+  // leaf range it tested, its draw's list kind and leaf count, and the leaves the tail leaf
+  // buffer holds for it (empty if they would run past the buffer). `instanced_leaves`: the
+  // frame drew leaves as instances (FrameSettings::instanced_leaves), which count otherwise.
+  struct TailList {
+    gpu::TailJob job;
+    uint32_t leaf_list = 0;  // the job's draw: LEAF_LIST_TAIL
+    uint32_t kept = 0;
+    std::vector<uint32_t> leaves;
+  };
+  std::vector<TailList> tail_lists(bool instanced_leaves = false);
   const DepthPyramid& depth_pyramid() const { return pyramid_; }
 
   uint32_t samples() const { return uint32_t(targets_.samples); }

@@ -10,8 +10,12 @@ namespace forest {
 TailCullPass create_tail_cull_pass(vk::Context& ctx, VkPipelineLayout layout, uint32_t instance_count,
                                    uint64_t instance_leaves) {
   TailCullPass p;
-  p.pipeline = vk::create_compute_pipeline(ctx, layout, "tail_cull_comp");
-  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // Full subgroups: the shader ranks its invocations by subgroup and lane (tail_cull.comp);
+  // TAIL_GROUP_SIZE is a multiple of every device's largest subgroup (vk::required_features).
+  p.pipeline = vk::create_compute_pipeline(ctx, layout, "tail_cull_comp",
+                                           VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT);
+  // Copied out by Renderer::tail_lists (tests).
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   p.jobs = vk::create_buffer(ctx, sizeof(gpu::TailJob) * std::max(instance_count, 1u), storage, vk::MemoryUse::device);
   p.capacity = uint32_t(std::clamp<uint64_t>(instance_leaves, 1, kMaxTailLeaves));
   p.leaves = vk::create_buffer(ctx, sizeof(uint32_t) * p.capacity, storage, vk::MemoryUse::device);

@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "generators/core/input_error.h"
+#include "gpu_types.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define FOREST_ASAN 1
@@ -168,8 +170,12 @@ std::vector<std::pair<std::string, bool>> required_features(VkPhysicalDevice phy
   VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
   vkGetPhysicalDeviceFeatures2(physical, &f);
-  VkPhysicalDeviceProperties p{};
-  vkGetPhysicalDeviceProperties(physical, &p);
+  VkPhysicalDeviceVulkan13Properties p13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+  VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES, &p13};
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p11};
+  vkGetPhysicalDeviceProperties2(physical, &p2);
+  const VkPhysicalDeviceProperties& p = p2.properties;
+  const VkSubgroupFeatureFlags subgroup_ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
   return {
       {"Vulkan 1.3", p.apiVersion >= VK_API_VERSION_1_3},
       {"drawIndirectCount", bool(f12.drawIndirectCount)},
@@ -181,6 +187,12 @@ std::vector<std::pair<std::string, bool>> required_features(VkPhysicalDevice phy
       {"multiDrawIndirect", bool(f.features.multiDrawIndirect)},
       {"drawIndirectFirstInstance", bool(f.features.drawIndirectFirstInstance)},
       {"maintenance4", bool(f13.maintenance4)},
+      // tail_cull.comp: prefix sums by subgroup, over full subgroups that tile its workgroup.
+      {"subgroup arithmetic in compute shaders", (p11.subgroupSupportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+                                                     (p11.subgroupSupportedOperations & subgroup_ops) == subgroup_ops},
+      {"computeFullSubgroups", bool(f13.subgroupSizeControl) && bool(f13.computeFullSubgroups)},
+      {"maxSubgroupSize dividing " + std::to_string(TAIL_GROUP_SIZE),
+       p13.maxSubgroupSize > 0 && TAIL_GROUP_SIZE % p13.maxSubgroupSize == 0},
   };
 }
 
@@ -321,6 +333,8 @@ void create_device(Context& ctx) {
   f13.dynamicRendering = VK_TRUE;
   f13.synchronization2 = VK_TRUE;
   f13.maintenance4 = VK_TRUE;  // required by 1.3; glslang emits LocalSizeId for SPIR-V 1.6
+  f13.subgroupSizeControl = VK_TRUE;  // required by 1.3: full subgroups for tail_cull.comp
+  f13.computeFullSubgroups = VK_TRUE;
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
   f12.drawIndirectCount = VK_TRUE;
   f12.samplerFilterMinmax = VK_TRUE;

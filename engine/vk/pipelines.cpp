@@ -152,10 +152,12 @@ bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves, std::string_v
   return true;
 }
 
-VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader) {
+VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader,
+                                   VkPipelineShaderStageCreateFlags stage_flags) {
   VkShaderModule cs = create_shader(ctx, shader);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs, "main"};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, stage_flags, VK_SHADER_STAGE_COMPUTE_BIT, cs,
+              "main"};
   ci.layout = layout;
   VkPipeline pipeline;
   VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));

@@ -61,6 +61,9 @@ VkPipeline create_graphics_pipeline(Context& ctx, VkPipelineLayout layout, const
 // triangle by leaf_card.geom (shaders/leaf_draw.glsl). False, and `leaves` unchanged, on a
 // device without geometry shaders, which draws leaves instanced.
 bool pull_leaves(const Context& ctx, GraphicsPipelineDesc& leaves, std::string_view vertex = "leaf_pulled_vert");
-VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader);
+// `stage_flags`: e.g. VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT for a shader
+// that ranks its invocations by subgroup (tail_cull.comp).
+VkPipeline create_compute_pipeline(Context& ctx, VkPipelineLayout layout, std::string_view shader,
+                                   VkPipelineShaderStageCreateFlags stage_flags = 0);
 
 }  // namespace forest::vk

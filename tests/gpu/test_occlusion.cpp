@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "engine/occlusion/depth_pyramid.h"
 #include "engine/tools/report/pr_image.h"
@@ -273,6 +274,50 @@ TEST_F(OcclusionTest, CameraCutNeverShowsAHole) {
   FrameStats moved = r.render(step, nullptr, occl);
   EXPECT_FALSE(moved.camera_cut);
   EXPECT_GT(moved.leaves_saved, 0u);
+}
+
+// tail_cull.comp's lists, read back: each job's kept leaves are distinct leaves of the range
+// it tested, in priority order, as many as its draw counts. The scene has a tree half behind
+// the row, whose tail is long and half seen, so a round's kept leaves come from several
+// threads, subgroups and rounds (32 consecutive leaves a thread): a leaf placed by a wrong prefix sum
+// overwrites another or leaves a gap, and the list is no longer increasing.
+TEST_F(OcclusionTest, TailListsKeepThePriorityOrder) {
+  Scene s = hidden_pruning_scene(broadleaf_with_hull());
+  s.desc.trees.push_back({1, 9.5f, 14.0f, 1.0f, 10.0f});  // half behind the row's right-hand tree
+  s.instances = place_trees(s.desc, s.terrain);
+  for (bool instanced : {false, true}) {
+    Renderer r(ctx_, s, 160, 120, 1);
+    FrameSettings occl;
+    occl.occlusion = true;
+    occl.instanced_leaves = instanced;
+    FrameStats stats;
+    for (int f = 0; f < 5; ++f) stats = r.render(s.desc.camera, nullptr, occl);
+    std::vector<Renderer::TailList> lists = r.tail_lists(instanced);
+    ASSERT_FALSE(lists.empty());
+    uint64_t dropped = 0, misplaced = 0;
+    uint32_t most_kept = 0;
+    std::string first_misplaced;
+    for (const Renderer::TailList& t : lists) {
+      EXPECT_EQ(t.leaf_list, uint32_t(LEAF_LIST_TAIL));
+      ASSERT_EQ(t.leaves.size(), t.kept);
+      for (size_t i = 0; i < t.leaves.size(); ++i) {
+        bool in_range = t.leaves[i] >= t.job.first_leaf && t.leaves[i] < t.job.end_leaf;
+        bool after_previous = i == 0 || t.leaves[i] > t.leaves[i - 1];
+        if (in_range && after_previous) continue;
+        if (misplaced++ == 0)
+          first_misplaced = "entry " + std::to_string(i) + " (leaf " + std::to_string(t.leaves[i]) + ") of the job over leaves [" +
+                            std::to_string(t.job.first_leaf) + ", " + std::to_string(t.job.end_leaf) + ")";
+      }
+      dropped += t.job.end_leaf - t.job.first_leaf - t.kept;
+      most_kept = std::max(most_kept, t.kept);
+    }
+    EXPECT_EQ(misplaced, 0u) << "first: " << first_misplaced;
+    // Every saved leaf is a tail leaf that was dropped: no tree here is hidden whole.
+    EXPECT_EQ(stats.occluded_instances, 0u);
+    EXPECT_EQ(dropped, stats.leaves_saved);
+    // Kept leaves from more rounds than one (2 048 leaves), so from several subgroups on any device.
+    EXPECT_GT(most_kept, 2048u) << (instanced ? "instanced" : "pulled");
+  }
 }
 
 // With MSAA the pyramid reads the resolved depth (sample 0): the hidden tree is found too.
